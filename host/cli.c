@@ -1,0 +1,128 @@
+#include "cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Largest image side accepted: far beyond any display, small enough that
+ * width * height * 16 bytes cannot overflow. */
+#define TP2_MAX_SIDE 32768
+
+void cli_usage(FILE *out)
+{
+    fputs("usage: tp2 [options] infile.txt outfile.{ppm,png,pfm} [X Y]\n"
+          "\n"
+          "Ray traces a scene file (see README.TXT) into an image of X by Y\n"
+          "pixels (default: the scene's own size, else 400 300).\n"
+          "\n"
+          "options:\n"
+          "  --device N           render on device N of --list-devices\n"
+          "                       (default: discrete GPU, then integrated,\n"
+          "                       then virtual, then CPU)\n"
+          "  --list-devices       list the Vulkan devices and exit\n"
+          "  --precision P        float (default) or double: double-precision\n"
+          "                       geometry, the reference image\n"
+          "  --validate           enable the Khronos validation layer; any\n"
+          "                       message fails the run (also TP2_VALIDATE=1)\n"
+          "  --help               show this text and exit\n",
+          out);
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    fputs("tp2: ", stderr);
+    fprintf(stderr, fmt, arg);
+    fputs("\ntp2: see 'tp2 --help'\n", stderr);
+    return -1;
+}
+
+/* A decimal integer in [lo, hi], the whole string; -1 if not. */
+static int parse_int(const char *s, long lo, long hi, int *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo || v > hi)
+        return -1;
+    *out = (int)v;
+    return 0;
+}
+
+/* Consumes the value of option argv[*i]; NULL if missing. */
+static const char *option_value(int argc, char **argv, int *i)
+{
+    if (*i + 1 >= argc)
+        return NULL;
+    return argv[++*i];
+}
+
+static int parse_option(int argc, char **argv, int *i, struct cli *c)
+{
+    const char *opt = argv[*i];
+    const char *v;
+    if (strcmp(opt, "--help") == 0 || strcmp(opt, "-h") == 0) {
+        c->help = true;
+    } else if (strcmp(opt, "--list-devices") == 0) {
+        c->list_devices = true;
+    } else if (strcmp(opt, "--validate") == 0) {
+        c->validate = true;
+    } else if (strcmp(opt, "--device") == 0) {
+        if (!(v = option_value(argc, argv, i)) ||
+            parse_int(v, 0, INT_MAX, &c->device_index) != 0)
+            return usage_error("--device needs a device index, found '%s'",
+                               v ? v : "nothing");
+    } else if (strcmp(opt, "--precision") == 0) {
+        v = option_value(argc, argv, i);
+        if (v && strcmp(v, "double") == 0)
+            c->use_double = true;
+        else if (v && strcmp(v, "float") == 0)
+            c->use_double = false;
+        else
+            return usage_error("--precision needs 'float' or 'double', found '%s'",
+                               v ? v : "nothing");
+    } else {
+        return usage_error("unknown option '%s'", opt);
+    }
+    return 0;
+}
+
+int cli_parse(int argc, char **argv, struct cli *c)
+{
+    memset(c, 0, sizeof *c);
+    c->device_index = -1;
+    const char *env = getenv("TP2_VALIDATE");
+    c->validate = env && strcmp(env, "1") == 0;
+    const char *positional[4];
+    int npos = 0;
+    bool options_done = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!options_done && strcmp(a, "--") == 0) {
+            options_done = true;
+        } else if (!options_done && a[0] == '-' && a[1] != '\0') {
+            if (parse_option(argc, argv, &i, c) != 0)
+                return -1;
+        } else if (npos == 4) {
+            return usage_error("unexpected argument '%s'", a);
+        } else {
+            positional[npos++] = a;
+        }
+    }
+    if (c->help || c->list_devices)
+        return 0;
+    if (npos != 2 && npos != 4)
+        return usage_error("%s", npos < 2 ? "expected an input and an output file"
+                                          : "expected both X and Y, or neither");
+    c->infile = positional[0];
+    c->outfile = positional[1];
+    if (npos == 4) {
+        if (parse_int(positional[2], 1, TP2_MAX_SIDE, &c->width) != 0)
+            return usage_error("X must be an integer from 1 to 32768, found '%s'",
+                               positional[2]);
+        if (parse_int(positional[3], 1, TP2_MAX_SIDE, &c->height) != 0)
+            return usage_error("Y must be an integer from 1 to 32768, found '%s'",
+                               positional[3]);
+    }
+    return 0;
+}

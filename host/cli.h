@@ -1,0 +1,24 @@
+/* cli.h: the command line of SPEC 1. */
+#ifndef TP2_CLI_H
+#define TP2_CLI_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+struct cli {
+    const char *infile, *outfile;
+    int width, height; /* 0 when not given */
+    int device_index;  /* -1: the best device */
+    bool use_double;   /* --precision double */
+    bool validate;     /* --validate or TP2_VALIDATE=1 */
+    bool help, list_devices;
+};
+
+/* Fills c from argv. Returns 0, or -1 after printing "tp2: ..." and a hint
+ * to stderr (a usage error: exit status 2). */
+int cli_parse(int argc, char **argv, struct cli *c);
+
+/* The --help text. */
+void cli_usage(FILE *out);
+
+#endif

@@ -1,0 +1,87 @@
+/* gpu_layout.h: the GPU structs as C sees them, in float and double.
+ *
+ * The float structs feed the default shader, the double ones the reference
+ * shader (--precision double). Their GLSL twin is shaders/layout.glsl; the
+ * asserts below pin every size and offset to the std430 rules. */
+#ifndef TP2_GPU_LAYOUT_H
+#define TP2_GPU_LAYOUT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "tp2_shared.h"
+
+#define TP2_CAT_(a, b) a##b
+#define TP2_CAT(a, b) TP2_CAT_(a, b)
+
+#define TP2_REAL float
+#define TP2_SUFFIX _f
+#include "gpu_layout_types.h"
+#undef TP2_REAL
+#undef TP2_SUFFIX
+
+#define TP2_REAL double
+#define TP2_SUFFIX _d
+#include "gpu_layout_types.h"
+#undef TP2_REAL
+#undef TP2_SUFFIX
+
+#define TP2_LAYOUT(type, field, offset) \
+    _Static_assert(offsetof(struct type, field) == (offset), #type "." #field)
+#define TP2_SIZE(type, size) \
+    _Static_assert(sizeof(struct type) == (size), "sizeof " #type)
+
+/* float: vec4 everywhere, 16-byte aligned. */
+TP2_LAYOUT(gpu_frame_f, eye, 0);
+TP2_LAYOUT(gpu_frame_f, u, 16);
+TP2_LAYOUT(gpu_frame_f, v, 32);
+TP2_LAYOUT(gpu_frame_f, w, 48);
+TP2_LAYOUT(gpu_frame_f, ambient, 64);
+TP2_LAYOUT(gpu_frame_f, background, 80);
+TP2_LAYOUT(gpu_frame_f, counts, 96);
+TP2_SIZE(gpu_frame_f, 112);
+TP2_LAYOUT(gpu_light_f, pos, 0);
+TP2_LAYOUT(gpu_light_f, color, 16);
+TP2_LAYOUT(gpu_light_f, att, 32);
+TP2_SIZE(gpu_light_f, 48);
+TP2_LAYOUT(gpu_pigment_f, color1, 0);
+TP2_LAYOUT(gpu_pigment_f, color2, 16);
+TP2_LAYOUT(gpu_pigment_f, params, 32);
+TP2_LAYOUT(gpu_pigment_f, kind, 48);
+TP2_SIZE(gpu_pigment_f, 64);
+TP2_LAYOUT(gpu_finish_f, phong, 0);
+TP2_LAYOUT(gpu_finish_f, optics, 16);
+TP2_SIZE(gpu_finish_f, 32);
+TP2_LAYOUT(gpu_object_f, geom, 0);
+TP2_LAYOUT(gpu_object_f, ids, 16);
+TP2_SIZE(gpu_object_f, 32);
+
+/* double: dvec4 is 32 bytes and 32-aligned, so structs round up to 32. */
+TP2_LAYOUT(gpu_frame_d, eye, 0);
+TP2_LAYOUT(gpu_frame_d, u, 32);
+TP2_LAYOUT(gpu_frame_d, v, 64);
+TP2_LAYOUT(gpu_frame_d, w, 96);
+TP2_LAYOUT(gpu_frame_d, ambient, 128);
+TP2_LAYOUT(gpu_frame_d, background, 144);
+TP2_LAYOUT(gpu_frame_d, counts, 160);
+TP2_SIZE(gpu_frame_d, 192);
+TP2_LAYOUT(gpu_light_d, pos, 0);
+TP2_LAYOUT(gpu_light_d, color, 32);
+TP2_LAYOUT(gpu_light_d, att, 48);
+TP2_SIZE(gpu_light_d, 64);
+TP2_LAYOUT(gpu_pigment_d, color1, 0);
+TP2_LAYOUT(gpu_pigment_d, color2, 16);
+TP2_LAYOUT(gpu_pigment_d, params, 32);
+TP2_LAYOUT(gpu_pigment_d, kind, 64);
+TP2_SIZE(gpu_pigment_d, 96);
+TP2_LAYOUT(gpu_finish_d, phong, 0);
+TP2_LAYOUT(gpu_finish_d, optics, 16);
+TP2_SIZE(gpu_finish_d, 32);
+TP2_LAYOUT(gpu_object_d, geom, 0);
+TP2_LAYOUT(gpu_object_d, ids, 32);
+TP2_SIZE(gpu_object_d, 64);
+
+#undef TP2_LAYOUT
+#undef TP2_SIZE
+
+#endif

@@ -1,0 +1,50 @@
+/* gpu_layout_types.h: one instantiation of the GPU structs (std430).
+ *
+ * Included twice by gpu_layout.h, with TP2_REAL = float / suffix _f and
+ * TP2_REAL = double / suffix _d. Every 4-vector carries the alignment std430
+ * gives it (16 bytes for vec4, 32 for dvec4), so C lays the struct out as the
+ * shader does; gpu_layout.h checks every size and offset. The GLSL side is
+ * shaders/layout.glsl. No include guard: included once per real type. */
+
+#define TP2_RVEC4(name) _Alignas(4 * sizeof(TP2_REAL)) TP2_REAL name[4]
+#define TP2_VEC4(name) _Alignas(16) float name[4]
+#define TP2_IVEC4(name) _Alignas(16) int32_t name[4]
+#define TP2_T(name) TP2_CAT(name, TP2_SUFFIX)
+
+struct TP2_T(gpu_frame) {
+    TP2_RVEC4(eye);     /* xyz: camera position */
+    TP2_RVEC4(u);       /* xyz: right, scaled by half the image width */
+    TP2_RVEC4(v);       /* xyz: up, scaled by half the image height */
+    TP2_RVEC4(w);       /* xyz: unit view direction (image plane at 1) */
+    TP2_VEC4(ambient);  /* rgb: color of light 0 */
+    TP2_VEC4(background);
+    TP2_IVEC4(counts);  /* width, height, point lights, objects */
+};
+
+struct TP2_T(gpu_light) {
+    TP2_RVEC4(pos);   /* xyz */
+    TP2_VEC4(color);  /* rgb */
+    TP2_VEC4(att);    /* a b c of 1 / (a + b d + c d^2), already non-zero */
+};
+
+struct TP2_T(gpu_pigment) {
+    TP2_VEC4(color1);
+    TP2_VEC4(color2);
+    TP2_RVEC4(params); /* x: checker side */
+    TP2_IVEC4(kind);   /* x: TP2_PIGMENT_* */
+};
+
+struct TP2_T(gpu_finish) {
+    TP2_VEC4(phong);  /* ka kd ks n */
+    TP2_VEC4(optics); /* kr kt ior */
+};
+
+struct TP2_T(gpu_object) {
+    TP2_RVEC4(geom); /* sphere: center, radius; plane: unit normal, d */
+    TP2_IVEC4(ids);  /* TP2_OBJECT_*, pigment, finish */
+};
+
+#undef TP2_RVEC4
+#undef TP2_VEC4
+#undef TP2_IVEC4
+#undef TP2_T

@@ -1,0 +1,269 @@
+#include "render.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene_pack.h"
+#include "tp2_shared.h"
+#include "trace_double_spv.h"
+#include "trace_float_spv.h"
+#include "vk_buffer.h"
+#include "vk_check.h"
+#include "vk_context.h"
+
+/* Pixels per submission side: bounds the work of one submission so that a
+ * GPU's watchdog never sees a long dispatch. */
+#define TP2_TILE 256
+
+struct renderer {
+    struct vkc vk;
+    struct vk_buffer buffers[TP2_BINDING_COUNT];
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout pipeline_layout;
+    VkShaderModule shader;
+    VkPipeline pipeline;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+    VkCommandPool command_pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+};
+
+struct tile_push {
+    int32_t origin[2];
+};
+
+static int create_buffers(struct renderer *r, const struct packed_scene *p,
+                          VkDeviceSize image_size)
+{
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
+        if (vk_buffer_create(&r->vk, p->size[i], false, &r->buffers[i]) != 0)
+            return -1;
+        memcpy(r->buffers[i].mapped, p->data[i], p->size[i]);
+    }
+    return vk_buffer_create(&r->vk, image_size, true,
+                            &r->buffers[TP2_BINDING_IMAGE]);
+}
+
+static int create_pipeline(struct renderer *r, bool use_double)
+{
+    VkDescriptorSetLayoutBinding bindings[TP2_BINDING_COUNT];
+    for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
+        bindings[i] = (VkDescriptorSetLayoutBinding){
+            .binding = i,
+            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            .descriptorCount = 1,
+            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+        };
+    VkDescriptorSetLayoutCreateInfo set_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = TP2_BINDING_COUNT,
+        .pBindings = bindings,
+    };
+    TP2_VK_TRY(vkCreateDescriptorSetLayout(r->vk.device, &set_info, NULL,
+                                           &r->set_layout));
+    VkPushConstantRange push = {
+        .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+        .size = sizeof(struct tile_push),
+    };
+    VkPipelineLayoutCreateInfo layout_info = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = 1,
+        .pSetLayouts = &r->set_layout,
+        .pushConstantRangeCount = 1,
+        .pPushConstantRanges = &push,
+    };
+    TP2_VK_TRY(vkCreatePipelineLayout(r->vk.device, &layout_info, NULL,
+                                      &r->pipeline_layout));
+    VkShaderModuleCreateInfo module_info = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = use_double ? sizeof tp2_trace_double : sizeof tp2_trace_float,
+        .pCode = use_double ? tp2_trace_double : tp2_trace_float,
+    };
+    TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+            .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+            .module = r->shader,
+            .pName = "main",
+        },
+        .layout = r->pipeline_layout,
+    };
+    TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, VK_NULL_HANDLE, 1, &info,
+                                        NULL, &r->pipeline));
+    return 0;
+}
+
+static int create_descriptors(struct renderer *r)
+{
+    VkDescriptorPoolSize size = {
+        .type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        .descriptorCount = TP2_BINDING_COUNT,
+    };
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = 1,
+        .poolSizeCount = 1,
+        .pPoolSizes = &size,
+    };
+    TP2_VK_TRY(vkCreateDescriptorPool(r->vk.device, &pool_info, NULL, &r->pool));
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = r->pool,
+        .descriptorSetCount = 1,
+        .pSetLayouts = &r->set_layout,
+    };
+    TP2_VK_TRY(vkAllocateDescriptorSets(r->vk.device, &alloc, &r->set));
+    VkDescriptorBufferInfo infos[TP2_BINDING_COUNT];
+    VkWriteDescriptorSet writes[TP2_BINDING_COUNT];
+    for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++) {
+        infos[i] = (VkDescriptorBufferInfo){
+            .buffer = r->buffers[i].buffer,
+            .range = VK_WHOLE_SIZE,
+        };
+        writes[i] = (VkWriteDescriptorSet){
+            .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+            .dstSet = r->set,
+            .dstBinding = i,
+            .descriptorCount = 1,
+            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            .pBufferInfo = &infos[i],
+        };
+    }
+    vkUpdateDescriptorSets(r->vk.device, TP2_BINDING_COUNT, writes, 0, NULL);
+    return 0;
+}
+
+static int create_commands(struct renderer *r)
+{
+    VkCommandPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+        .queueFamilyIndex = r->vk.queue_family,
+    };
+    TP2_VK_TRY(vkCreateCommandPool(r->vk.device, &pool_info, NULL,
+                                   &r->command_pool));
+    VkCommandBufferAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = r->command_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    TP2_VK_TRY(vkAllocateCommandBuffers(r->vk.device, &alloc, &r->cmd));
+    VkFenceCreateInfo fence_info = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    TP2_VK_TRY(vkCreateFence(r->vk.device, &fence_info, NULL, &r->fence));
+    return 0;
+}
+
+/* Records, submits and waits for one tile's dispatch. */
+static int run_tile(struct renderer *r, int x, int y, int w, int h)
+{
+    struct tile_push push = {{x, y}};
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    TP2_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
+    TP2_VK_TRY(vkBeginCommandBuffer(r->cmd, &begin));
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+    vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                            r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+    vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT,
+                       0, sizeof push, &push);
+    vkCmdDispatch(r->cmd, (uint32_t)(w + TP2_GROUP_X - 1) / TP2_GROUP_X,
+                  (uint32_t)(h + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
+    /* Make the shader's writes visible to the host's reads after the fence. */
+    VkMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+    };
+    vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, NULL,
+                         0, NULL);
+    TP2_VK_TRY(vkEndCommandBuffer(r->cmd));
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &r->cmd,
+    };
+    TP2_VK_TRY(vkResetFences(r->vk.device, 1, &r->fence));
+    TP2_VK_TRY(vkQueueSubmit(r->vk.queue, 1, &submit, r->fence));
+    TP2_VK_TRY(vkWaitForFences(r->vk.device, 1, &r->fence, VK_TRUE, UINT64_MAX));
+    return 0;
+}
+
+static int run_tiles(struct renderer *r, int width, int height)
+{
+    for (int y = 0; y < height; y += TP2_TILE)
+        for (int x = 0; x < width; x += TP2_TILE) {
+            int w = width - x < TP2_TILE ? width - x : TP2_TILE;
+            int h = height - y < TP2_TILE ? height - y : TP2_TILE;
+            if (run_tile(r, x, y, w, h) != 0)
+                return -1;
+        }
+    return 0;
+}
+
+static void renderer_destroy(struct renderer *r)
+{
+    VkDevice d = r->vk.device;
+    if (d) {
+        vkDeviceWaitIdle(d);
+        vkDestroyFence(d, r->fence, NULL);
+        vkDestroyCommandPool(d, r->command_pool, NULL);
+        vkDestroyDescriptorPool(d, r->pool, NULL);
+        vkDestroyPipeline(d, r->pipeline, NULL);
+        vkDestroyShaderModule(d, r->shader, NULL);
+        vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
+        vkDestroyDescriptorSetLayout(d, r->set_layout, NULL);
+        for (int i = TP2_BINDING_COUNT - 1; i >= 0; i--)
+            vk_buffer_destroy(&r->vk, &r->buffers[i]);
+    }
+    vkc_destroy(&r->vk);
+}
+
+/* The output buffer must fit in one storage-buffer binding. */
+static int check_image_size(const struct vkc *vk, VkDeviceSize bytes)
+{
+    if (bytes > vk->props.limits.maxStorageBufferRange) {
+        fprintf(stderr, "tp2: image too large for device '%s' (%llu bytes, "
+                        "its limit is %u)\n",
+                vk->props.deviceName, (unsigned long long)bytes,
+                vk->props.limits.maxStorageBufferRange);
+        return -1;
+    }
+    return 0;
+}
+
+int render_scene(const struct scene *s, const struct render_options *opt,
+                 float *rgba)
+{
+    struct renderer r = {0};
+    struct packed_scene packed = {0};
+    struct vkc_options vk_opt = {
+        .device_index = opt->device_index,
+        .need_float64 = opt->use_double,
+        .validate = opt->validate,
+    };
+    VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);
+    int rc = -1;
+    if (scene_pack(s, opt->width, opt->height, opt->use_double, &packed) != 0) {
+        fputs("tp2: out of memory\n", stderr);
+        goto done;
+    }
+    if (vkc_create(&r.vk, &vk_opt) != 0 || check_image_size(&r.vk, image_size) != 0 ||
+        create_buffers(&r, &packed, image_size) != 0 ||
+        create_pipeline(&r, opt->use_double) != 0 || create_descriptors(&r) != 0 ||
+        create_commands(&r) != 0 || run_tiles(&r, opt->width, opt->height) != 0)
+        goto done;
+    memcpy(rgba, r.buffers[TP2_BINDING_IMAGE].mapped, (size_t)image_size);
+    rc = 0;
+done:
+    renderer_destroy(&r);
+    packed_scene_free(&packed);
+    return rc;
+}

@@ -1,0 +1,23 @@
+/* vk_buffer.h: host-visible storage buffers, mapped for their lifetime. */
+#ifndef TP2_VK_BUFFER_H
+#define TP2_VK_BUFFER_H
+
+#include "vk_context.h"
+
+struct vk_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void *mapped;
+    VkDeviceSize size;
+};
+
+/* Creates a storage buffer of `size` bytes, mapped and coherent; `readback`
+ * prefers cached memory (the host reads it), otherwise device-local memory
+ * (the shader reads it). Returns 0 or -1 after a message. */
+int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
+                     struct vk_buffer *b);
+
+/* Unmaps and frees; safe on a zeroed buffer. */
+void vk_buffer_destroy(const struct vkc *c, struct vk_buffer *b);
+
+#endif

@@ -1,0 +1,314 @@
+#include "vk_context.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "vk_check.h"
+
+#define TP2_VALIDATION_LAYER "VK_LAYER_KHRONOS_validation"
+
+static const char no_vulkan_hint[] =
+    "tp2: no Vulkan device found; install a Vulkan driver (on Debian: "
+    "apt-get install mesa-vulkan-drivers libvulkan1 for the lavapipe CPU "
+    "driver, or your GPU vendor's driver)\n";
+
+static unsigned validation_messages;
+
+unsigned vkc_validation_message_count(void)
+{
+    return validation_messages;
+}
+
+static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+    VkDebugUtilsMessageTypeFlagsEXT type,
+    const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)severity;
+    (void)type;
+    (void)user;
+    validation_messages++;
+    fprintf(stderr, "tp2: validation: %s\n", data->pMessage);
+    return VK_FALSE;
+}
+
+static bool has_layer(const char *name)
+{
+    uint32_t n = 0;
+    if (vkEnumerateInstanceLayerProperties(&n, NULL) != VK_SUCCESS)
+        return false;
+    VkLayerProperties *layers = calloc(n ? n : 1, sizeof *layers);
+    if (!layers)
+        return false;
+    bool found = false;
+    if (vkEnumerateInstanceLayerProperties(&n, layers) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; i++)
+            found = strcmp(layers[i].layerName, name) == 0;
+    free(layers);
+    return found;
+}
+
+static const VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
+    .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+    .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+    .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                   VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                   VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+    .pfnUserCallback = on_validation_message,
+};
+
+static int create_instance(VkInstance *instance, bool validate)
+{
+    if (validate && !has_layer(TP2_VALIDATION_LAYER)) {
+        fprintf(stderr, "tp2: validation requested but %s is not installed "
+                        "(Debian: vulkan-validationlayers)\n",
+                TP2_VALIDATION_LAYER);
+        return -1;
+    }
+    const char *layers[] = {TP2_VALIDATION_LAYER};
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "tp2",
+        .apiVersion = VK_API_VERSION_1_1,
+    };
+    VkInstanceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = validate ? &messenger_info : NULL,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = validate ? 1 : 0,
+        .ppEnabledLayerNames = layers,
+        .enabledExtensionCount = validate ? 1 : 0,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult r = vkCreateInstance(&info, NULL, instance);
+    if (r == VK_ERROR_INCOMPATIBLE_DRIVER) {
+        fputs(no_vulkan_hint, stderr);
+        return -1;
+    }
+    TP2_VK_TRY(r);
+    return 0;
+}
+
+/* Higher is better: discrete, integrated, virtual, then CPU (lavapipe). */
+static int type_rank(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+    }
+}
+
+static const char *type_name(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+    default: return "other";
+    }
+}
+
+/* Enumerates devices into a new array; -1 after a message if none. */
+static int get_devices(VkInstance instance, VkPhysicalDevice **out,
+                       uint32_t *count)
+{
+    *out = NULL;
+    *count = 0;
+    TP2_VK_TRY(vkEnumeratePhysicalDevices(instance, count, NULL));
+    if (*count == 0) {
+        fputs(no_vulkan_hint, stderr);
+        return -1;
+    }
+    *out = calloc(*count, sizeof **out);
+    if (!*out) {
+        fputs("tp2: out of memory\n", stderr);
+        return -1;
+    }
+    VkResult r = vkEnumeratePhysicalDevices(instance, count, *out);
+    if (r != VK_SUCCESS && r != VK_INCOMPLETE) {
+        vk_report("vkEnumeratePhysicalDevices", r, __FILE__, __LINE__);
+        free(*out);
+        *out = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+static int best_device(const VkPhysicalDevice *devices, uint32_t count)
+{
+    int best = 0, best_rank = -1;
+    for (uint32_t i = 0; i < count; i++) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        if (type_rank(p.deviceType) > best_rank) {
+            best_rank = type_rank(p.deviceType);
+            best = (int)i;
+        }
+    }
+    return best;
+}
+
+int vkc_list_devices(FILE *out)
+{
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice *devices = NULL;
+    uint32_t count = 0;
+    int rc = -1;
+    if (create_instance(&instance, false) == 0 &&
+        get_devices(instance, &devices, &count) == 0) {
+        int best = best_device(devices, count);
+        for (uint32_t i = 0; i < count; i++) {
+            VkPhysicalDeviceProperties p;
+            vkGetPhysicalDeviceProperties(devices[i], &p);
+            fprintf(out, "%u: %s (%s)%s\n", i, p.deviceName,
+                    type_name(p.deviceType),
+                    (int)i == best ? " [default]" : "");
+        }
+        rc = 0;
+    }
+    free(devices);
+    if (instance)
+        vkDestroyInstance(instance, NULL);
+    return rc;
+}
+
+static int find_compute_queue(VkPhysicalDevice dev, uint32_t *family)
+{
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(dev, &n, NULL);
+    VkQueueFamilyProperties *q = calloc(n ? n : 1, sizeof *q);
+    if (!q)
+        return -1;
+    vkGetPhysicalDeviceQueueFamilyProperties(dev, &n, q);
+    int rc = -1;
+    for (uint32_t i = 0; i < n && rc != 0; i++)
+        if (q[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+            *family = i;
+            rc = 0;
+        }
+    free(q);
+    return rc;
+}
+
+static int pick_device(struct vkc *c, const struct vkc_options *opt)
+{
+    VkPhysicalDevice *devices = NULL;
+    uint32_t count = 0;
+    if (get_devices(c->instance, &devices, &count) != 0)
+        return -1;
+    int index = opt->device_index;
+    if (index >= (int)count) {
+        fprintf(stderr, "tp2: no device %d: %u device%s found "
+                        "(see tp2 --list-devices)\n",
+                index, count, count == 1 ? "" : "s");
+        free(devices);
+        return -1;
+    }
+    if (index < 0)
+        index = best_device(devices, count);
+    c->physical = devices[index];
+    free(devices);
+    vkGetPhysicalDeviceProperties(c->physical, &c->props);
+    vkGetPhysicalDeviceMemoryProperties(c->physical, &c->memory);
+    if (find_compute_queue(c->physical, &c->queue_family) != 0) {
+        fprintf(stderr, "tp2: device '%s' has no compute queue\n",
+                c->props.deviceName);
+        return -1;
+    }
+    return 0;
+}
+
+static int create_device(struct vkc *c, const struct vkc_options *opt)
+{
+    VkPhysicalDeviceFeatures have;
+    vkGetPhysicalDeviceFeatures(c->physical, &have);
+    if (opt->need_float64 && !have.shaderFloat64) {
+        fprintf(stderr, "tp2: device '%s' has no shaderFloat64, so it "
+                        "cannot render --precision double; choose another "
+                        "with --device (lavapipe has it)\n",
+                c->props.deviceName);
+        return -1;
+    }
+    VkPhysicalDeviceFeatures want = {.shaderFloat64 = opt->need_float64};
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = c->queue_family,
+        .queueCount = 1,
+        .pQueuePriorities = &priority,
+    };
+    VkDeviceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &queue,
+        .pEnabledFeatures = &want,
+    };
+    TP2_VK_TRY(vkCreateDevice(c->physical, &info, NULL, &c->device));
+    vkGetDeviceQueue(c->device, c->queue_family, 0, &c->queue);
+    return 0;
+}
+
+static int create_messenger(struct vkc *c)
+{
+    PFN_vkCreateDebugUtilsMessengerEXT create =
+        (PFN_vkCreateDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+            c->instance, "vkCreateDebugUtilsMessengerEXT");
+    if (!create) {
+        fputs("tp2: vkCreateDebugUtilsMessengerEXT is missing\n", stderr);
+        return -1;
+    }
+    TP2_VK_TRY(create(c->instance, &messenger_info, NULL, &c->messenger));
+    return 0;
+}
+
+int vkc_create(struct vkc *c, const struct vkc_options *opt)
+{
+    memset(c, 0, sizeof *c);
+    if (create_instance(&c->instance, opt->validate) != 0)
+        return -1;
+    if (opt->validate && create_messenger(c) != 0)
+        return -1;
+    if (pick_device(c, opt) != 0)
+        return -1;
+    return create_device(c, opt);
+}
+
+void vkc_destroy(struct vkc *c)
+{
+    if (c->device) {
+        vkDeviceWaitIdle(c->device);
+        vkDestroyDevice(c->device, NULL);
+    }
+    if (c->messenger) {
+        PFN_vkDestroyDebugUtilsMessengerEXT destroy =
+            (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(
+                c->instance, "vkDestroyDebugUtilsMessengerEXT");
+        if (destroy)
+            destroy(c->instance, c->messenger, NULL);
+    }
+    if (c->instance)
+        vkDestroyInstance(c->instance, NULL);
+    memset(c, 0, sizeof *c);
+}
+
+int vkc_memory_type(const struct vkc *c, uint32_t allowed,
+                    VkMemoryPropertyFlags want, VkMemoryPropertyFlags prefer)
+{
+    int fallback = -1;
+    for (uint32_t i = 0; i < c->memory.memoryTypeCount; i++) {
+        VkMemoryPropertyFlags f = c->memory.memoryTypes[i].propertyFlags;
+        if (!(allowed & (1u << i)) || (f & want) != want)
+            continue;
+        if ((f & prefer) == prefer)
+            return (int)i;
+        if (fallback < 0)
+            fallback = (int)i;
+    }
+    return fallback;
+}
