@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""check_cli.py TP2 CASE: the command line of SPEC 1, case by case.
+
+`check_cli.py --list` prints the case names. Each case runs tp2 in a fresh
+folder and checks exit status, the message, and which files exist after."""
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENE = os.path.join(HERE, "render", "cli.txt")
+PARSE_ERROR = os.path.join(HERE, "errors", "not-a-number.txt")
+
+
+def run(tp2, args, env=None):
+    """Runs tp2 with args; returns (status, stdout, stderr)."""
+    e = dict(os.environ)
+    e.update(env or {})
+    r = subprocess.run([tp2] + args, capture_output=True, timeout=120, env=e)
+    return r.returncode, r.stdout.decode(), r.stderr.decode()
+
+
+def ppm_size(path):
+    """(width, height) from a P6 header."""
+    with open(path, "rb") as f:
+        fields = f.read(64).split()
+    assert fields[0] == b"P6", fields[0]
+    return int(fields[1]), int(fields[2])
+
+
+class Check:
+    def __init__(self, tp2, tmp):
+        self.tp2, self.tmp, self.failures = tp2, tmp, []
+
+    def out(self, name="out.ppm"):
+        return os.path.join(self.tmp, name)
+
+    def expect(self, cond, what):
+        if not cond:
+            self.failures.append(what)
+
+    def usage_error(self, args, message):
+        """Exit 2, stderr starts with message, nothing written."""
+        status, _, err = run(self.tp2, args)
+        self.expect(status == 2, f"{args}: exit {status}, expected 2")
+        self.expect(err.startswith(message), f"{args}: stderr {err!r}, expected {message!r}...")
+        self.expect(os.listdir(self.tmp) == [], f"{args}: wrote {os.listdir(self.tmp)}")
+
+    def failure(self, args, message, env=None):
+        """Exit 1, message somewhere in stderr, nothing written."""
+        status, _, err = run(self.tp2, args, env)
+        self.expect(status == 1, f"{args}: exit {status}, expected 1")
+        self.expect(message in err, f"{args}: stderr {err!r}, expected {message!r}")
+        self.expect(os.listdir(self.tmp) == [], f"{args}: wrote {os.listdir(self.tmp)}")
+
+    def renders(self, args, size, name="out.ppm"):
+        """Exit 0, silent, and a PPM of the given size."""
+        status, _, err = run(self.tp2, args)
+        self.expect(status == 0 and err == "", f"{args}: exit {status}, stderr {err!r}")
+        if status == 0:
+            self.expect(ppm_size(self.out(name)) == size,
+                        f"{args}: size {ppm_size(self.out(name))}, expected {size}")
+
+
+def case_help(c):
+    """--help prints the usage on stdout and exits 0."""
+    status, out, _ = run(c.tp2, ["--help"])
+    c.expect(status == 0 and out.startswith("usage: tp2"), f"--help: {status} {out[:40]!r}")
+
+
+def case_usage_errors(c):
+    """Wrong argument counts and values exit 2 with a tp2: message."""
+    c.usage_error([], "tp2: expected an input and an output file")
+    c.usage_error([SCENE], "tp2: expected an input and an output file")
+    c.usage_error([SCENE, c.out(), "40"], "tp2: expected both X and Y, or neither")
+    c.usage_error([SCENE, c.out(), "0", "30"], "tp2: X must be an integer from 1 to 32768, found '0'")
+    c.usage_error([SCENE, c.out(), "40", "3x"], "tp2: Y must be an integer from 1 to 32768, found '3x'")
+    c.usage_error([SCENE, c.out(), "40000", "30"], "tp2: X must be an integer")
+    c.usage_error([SCENE, c.out(), "4", "3", "2"], "tp2: unexpected argument '2'")
+    c.usage_error(["--bogus", SCENE, c.out()], "tp2: unknown option '--bogus'")
+    c.usage_error(["--device", SCENE, c.out()], "tp2: --device needs a device index")
+    c.usage_error(["--device"], "tp2: --device needs a device index, found 'nothing'")
+    c.usage_error(["--precision", "half", SCENE, c.out()], "tp2: --precision needs 'float' or 'double'")
+    c.usage_error([SCENE, c.out("out.jpg")], "tp2: cannot tell the format of")
+
+
+def case_input_missing(c):
+    """A missing input file exits 1 naming it."""
+    c.failure([os.path.join(c.tmp, "nope.txt"), c.out()], "tp2: cannot read '")
+
+
+def case_output_dir_missing(c):
+    """An output in a missing folder exits 1 and writes nothing."""
+    status, _, err = run(c.tp2, [SCENE, os.path.join(c.tmp, "no", "out.ppm"), "8", "6"])
+    c.expect(status == 1 and err.startswith("tp2: cannot write"), f"exit {status} {err!r}")
+    c.expect(os.listdir(c.tmp) == [], f"wrote {os.listdir(c.tmp)}")
+
+
+def case_bad_device(c):
+    """A device index past the list exits 1."""
+    c.failure(["--device", "99", SCENE, c.out()], "tp2: no device 99")
+
+
+def case_no_vulkan(c):
+    """With no Vulkan driver at all, one sentence says what to install."""
+    env = {"VK_ICD_FILENAMES": "/nonexistent/icd.json", "VK_DRIVER_FILES": "/nonexistent/icd.json"}
+    c.failure([SCENE, c.out()], "tp2: no Vulkan device found; install", env)
+
+
+def case_list_devices(c):
+    """--list-devices names lavapipe and marks a default."""
+    status, out, _ = run(c.tp2, ["--list-devices"])
+    c.expect(status == 0 and "llvmpipe" in out and "[default]" in out, f"{status} {out!r}")
+
+
+def case_sizes(c):
+    """X Y set the size; options may come before the positionals."""
+    c.renders(["--device", "0", SCENE, c.out(), "37", "23"], (37, 23))
+    c.renders([SCENE, c.out(), "1", "1"], (1, 1))
+
+
+def case_atomic_overwrite(c):
+    """A failed run leaves an existing output untouched; a good one replaces it."""
+    path = c.out()
+    with open(path, "wb") as f:
+        f.write(b"old")
+    status, _, _ = run(c.tp2, [PARSE_ERROR, path])
+    with open(path, "rb") as f:
+        c.expect(status == 1 and f.read() == b"old", "parse error changed the old output")
+    c.renders([SCENE, path, "9", "7"], (9, 7))
+    c.expect(sorted(os.listdir(c.tmp)) == ["out.ppm"], f"left {os.listdir(c.tmp)}")
+
+
+def case_formats(c):
+    """.png and .pfm outputs are written with their signatures."""
+    for name, magic in (("o.png", b"\x89PNG"), ("o.pfm", b"PF\n"), ("o.PPM", b"P6\n")):
+        status, _, err = run(c.tp2, [SCENE, c.out(name), "8", "6"])
+        with open(c.out(name), "rb") as f:
+            c.expect(status == 0 and f.read(len(magic)) == magic, f"{name}: {status} {err!r}")
+
+
+CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
+
+
+def main():
+    if sys.argv[1:] == ["--list"]:
+        print("\n".join(CASES))
+        return 0
+    tp2, case = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        c = Check(tp2, tmp)
+        CASES[case](c)
+    for f in c.failures:
+        print("FAIL", f)
+    return 1 if c.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""check_error.py TP2 SCENE: tp2 must reject SCENE exactly as its first line says.
+
+SCENE's first line is `# expect: LINE:COL: error: MESSAGE`. The test runs
+`tp2 SCENE out.ppm` in a fresh folder and checks: exit status 1, stderr is
+exactly one line `SCENE:LINE:COL: error: MESSAGE`, and no file appeared
+(neither out.ppm nor a temporary one)."""
+import os
+import subprocess
+import sys
+import tempfile
+
+
+def main():
+    tp2, scene = sys.argv[1], sys.argv[2]
+    with open(scene, "rb") as f:
+        first = f.readline().decode("utf-8", "replace").rstrip("\r\n")
+    prefix = "# expect: "
+    if not first.startswith(prefix):
+        print(f"{scene}: first line must start with '{prefix}'")
+        return 1
+    expected = f"{scene}:{first[len(prefix):]}"
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out.ppm")
+        r = subprocess.run([tp2, scene, out], capture_output=True, timeout=60)
+        stderr = r.stderr.decode("utf-8", "replace")
+        left = os.listdir(tmp)
+    failures = []
+    if r.returncode != 1:
+        failures.append(f"exit status {r.returncode}, expected 1")
+    if stderr != expected + "\n":
+        failures.append(f"stderr:\n  got      {stderr!r}\n  expected {expected + chr(10)!r}")
+    if left:
+        failures.append(f"files were written: {left}")
+    for f in failures:
+        print(f"FAIL {scene}: {f}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
