@@ -7,6 +7,14 @@
 
 #include <stddef.h>
 
+/* Largest image side accepted, from the command line or a scene header:
+ * far beyond any display, and width * height * 16 bytes cannot overflow. */
+#define TP2_MAX_IMAGE_SIDE 32768
+
+/* Most samples per pixel, and points per area light: 4096 already brings
+ * stratified noise far below one 8-bit level. */
+#define TP2_MAX_SAMPLES 4096
+
 enum pigment_kind { PIGMENT_SOLID, PIGMENT_CHECKER };
 enum object_kind { OBJECT_SPHERE, OBJECT_PLANE };
 
@@ -17,7 +25,15 @@ struct scene_light {
 };
 
 struct scene_pigment {
-    enum pigment_kind kind;
+    /* Largest image side accepted, from the command line or a scene header:
+ * far beyond any display, and width * height * 16 bytes cannot overflow. */
+#define TP2_MAX_IMAGE_SIDE 32768
+
+/* Most samples per pixel, and points per area light: 4096 already brings
+ * stratified noise far below one 8-bit level. */
+#define TP2_MAX_SAMPLES 4096
+
+enum pigment_kind kind;
     double color1[3];
     double color2[3]; /* checker only */
     double scale;     /* checker cube side, > 0 */

@@ -1,0 +1,62 @@
+/* lexer.h: splits scene text into numbers and words, with positions.
+ *
+ * Numbers are read the way C's strtod reads them (C locale), one after
+ * another, so "1-10 5" is 1, -10, 5 and "2.5.3" is 2.5, .3. A token that does
+ * not begin a number is a word and runs to the next white space, '#' or NUL.
+ * '#' starts a comment that runs to the end of the line. */
+#ifndef TP2_LEXER_H
+#define TP2_LEXER_H
+
+#include <stddef.h>
+
+enum token_kind { TOKEN_EOF, TOKEN_NUMBER, TOKEN_WORD, TOKEN_ERROR };
+
+struct token {
+    enum token_kind kind;
+    const char *text; /* into the lexer's copy; len bytes, no NUL at the end */
+    size_t len;
+    size_t line, col; /* 1-based; col counts bytes, so a tab is one column */
+    double value;     /* TOKEN_NUMBER only; always finite */
+};
+
+/* Room for a quoted token: 32 bytes escaped as \xNN, quotes, "...", NUL. */
+#define LEXER_QUOTE_SIZE 144
+/* Room for a lexical error message such as "malformed number '...'". */
+#define LEXER_MESSAGE_SIZE 192
+
+struct lexer {
+    char *buf; /* NUL-terminated copy of the text, so strtod stops inside it */
+    size_t len, pos;
+    size_t line, col;
+    int failed;                 /* errors are sticky: the same token again */
+    struct token error;         /* the TOKEN_ERROR token, once failed */
+    char message[LEXER_MESSAGE_SIZE]; /* what went wrong, once failed */
+};
+
+/* Copies len bytes of text (need not be NUL terminated; may hold NUL bytes)
+ * and positions the lexer at its start. Returns 0, or -1 when out of memory
+ * (then lexer_free is still safe). */
+int lexer_init(struct lexer *lx, const char *text, size_t len);
+
+/* Frees the copy; safe after a failed lexer_init and twice. */
+void lexer_free(struct lexer *lx);
+
+/* Stores the next token in *tok. At the end it gives TOKEN_EOF (positioned
+ * just past the last byte) forever. On a lexical error (NUL byte, malformed or
+ * non-finite number) it gives TOKEN_ERROR with lx->message set, and then the
+ * same token forever. */
+void lexer_next(struct lexer *lx, struct token *tok);
+
+/* 1 if tok is a word that strtod reads whole as infinity or NaN ("inf",
+ * "NaN", "Infinity"), so a parser can say a finite number was expected. */
+int token_is_nonfinite_word(const struct token *tok);
+
+/* Writes s[0..len) to out in single quotes, bytes outside printable ASCII
+ * as \xNN, at most 32 bytes of it and then "...". Always NUL-terminates
+ * out (when size > 0); LEXER_QUOTE_SIZE is always enough. */
+void lexer_quote(const char *s, size_t len, char *out, size_t size);
+
+/* What a message says was found: "end of file" or the quoted token. */
+void token_describe(const struct token *tok, char *out, size_t size);
+
+#endif

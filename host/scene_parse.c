@@ -1,0 +1,700 @@
+/* scene_parse.c: scene text -> struct scene, one function per section and
+ * per entry type, each checking its own parameters.
+ *
+ * The parser looks one token ahead (p->tok). A lexical error is reported
+ * only when the parser reaches it, so errors come out in text order. */
+#include "scene_parse.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lexer.h"
+
+/* Counts, indices and integer settings are kept within int32. */
+#define INT_LIMIT 2147483647u
+
+/* |w x up| below this (unit vectors) means up gives no usable "up". */
+#define PARALLEL_EPS 1e-9
+
+struct parser {
+    struct lexer lx;
+    struct token tok; /* the next token, not yet consumed */
+    const char *name;
+    char *err;
+    size_t errsize;
+    struct scene s;
+    size_t cap_lights, cap_pigments, cap_finishes, cap_objects;
+};
+
+/* ---- messages ---------------------------------------------------------- */
+
+static void next(struct parser *p)
+{
+    lexer_next(&p->lx, &p->tok);
+}
+
+/* Writes "NAME:LINE:COL: error: ..." at token at; returns -1. */
+static int fail_at(struct parser *p, const struct token *at, const char *fmt,
+                   ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (p->err && p->errsize > 0)
+        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->name,
+                 at->line, at->col, msg);
+    return -1;
+}
+
+static int fail_oom(struct parser *p)
+{
+    if (p->err && p->errsize > 0)
+        snprintf(p->err, p->errsize, "tp2: out of memory reading '%s'",
+                 p->name);
+    return -1;
+}
+
+/* "expected WHAT, found TOKEN" at token at; a lexical error there wins,
+ * since it says more about the text than what the grammar wanted. */
+static int fail_value(struct parser *p, const struct token *at,
+                      const char *what)
+{
+    if (at->kind == TOKEN_ERROR)
+        return fail_at(p, at, "%s", p->lx.message);
+    char found[LEXER_QUOTE_SIZE];
+    token_describe(at, found, sizeof found);
+    return fail_at(p, at, "expected %s, found %s", what, found);
+}
+
+static int fail_expected(struct parser *p, const char *what)
+{
+    return fail_value(p, &p->tok, what);
+}
+
+/* ---- tokens ------------------------------------------------------------ */
+
+static int is_word(const struct token *t, const char *w)
+{
+    return t->kind == TOKEN_WORD && t->len == strlen(w) &&
+           memcmp(t->text, w, t->len) == 0;
+}
+
+static int is_one_of(const struct token *t, const char *const *words)
+{
+    for (; *words; words++)
+        if (is_word(t, *words))
+            return 1;
+    return 0;
+}
+
+enum uint_kind { UINT_NOT, UINT_OK, UINT_TOO_BIG };
+
+/* Classifies a token as plain decimal digits within INT_LIMIT. Anything
+ * else ("3.0", "-1", "1e3", "+3") is not a count, though strtod reads it. */
+static enum uint_kind token_uint(const struct token *t, uint32_t *v)
+{
+    uint64_t acc = 0;
+    if (t->kind != TOKEN_NUMBER)
+        return UINT_NOT;
+    for (size_t i = 0; i < t->len; i++) {
+        char c = t->text[i];
+        if (c < '0' || c > '9')
+            return UINT_NOT;
+        if (acc <= INT_LIMIT)
+            acc = acc * 10 + (uint64_t)(c - '0');
+    }
+    *v = (uint32_t)(acc <= INT_LIMIT ? acc : 0);
+    return acc <= INT_LIMIT ? UINT_OK : UINT_TOO_BIG;
+}
+
+/* Digits of a too-big integer token, cut like a quote but without quotes. */
+static void digits_text(const struct token *t, char *out, size_t size)
+{
+    int n = t->len > 32 ? 32 : (int)t->len;
+    snprintf(out, size, "%.*s%s", n, t->text, t->len > 32 ? "..." : "");
+}
+
+/* ---- values ------------------------------------------------------------ */
+
+/* Reads one finite number; *at (may be NULL) gets its token. */
+static int read_number(struct parser *p, double *v, struct token *at)
+{
+    if (at)
+        *at = p->tok;
+    if (p->tok.kind == TOKEN_NUMBER) {
+        *v = p->tok.value;
+        next(p);
+        return 0;
+    }
+    if (token_is_nonfinite_word(&p->tok))
+        return fail_expected(p, "a finite number");
+    return fail_expected(p, "a number");
+}
+
+static int read_numbers(struct parser *p, double *v, int n, struct token *at)
+{
+    for (int i = 0; i < n; i++)
+        if (read_number(p, &v[i], i == 0 ? at : NULL))
+            return -1;
+    return 0;
+}
+
+/* Reads a number that must be > 0 (or >= 0 when zero_ok); what names it. */
+static int read_bounded(struct parser *p, double *v, int zero_ok,
+                        const char *what)
+{
+    struct token at;
+    if (read_number(p, v, &at))
+        return -1;
+    if (*v > 0 || (zero_ok && *v == 0))
+        return 0;
+    return fail_value(p, &at, what);
+}
+
+/* Reads an integer in [min, INT_LIMIT]; what is the "expected" phrase and
+ * noun names the value when it is too large. */
+static int read_int(struct parser *p, uint32_t min, const char *what,
+                    const char *noun, uint32_t *v)
+{
+    enum uint_kind k = token_uint(&p->tok, v);
+    if (k == UINT_TOO_BIG) {
+        char digits[48];
+        digits_text(&p->tok, digits, sizeof digits);
+        return fail_at(p, &p->tok, "%s %s is too large (at most %u)", noun,
+                       digits, INT_LIMIT);
+    }
+    if (k != UINT_OK || *v < min)
+        return fail_expected(p, what);
+    next(p);
+    return 0;
+}
+
+/* read_int, with values above max reported as too large. */
+static int read_int_at_most(struct parser *p, uint32_t min, uint32_t max,
+                            const char *what, const char *noun, uint32_t *v)
+{
+    struct token at = p->tok;
+    if (read_int(p, min, what, noun, v))
+        return -1;
+    if (*v > max)
+        return fail_at(p, &at, "%s %u is too large (at most %u)", noun, *v, max);
+    return 0;
+}
+
+static int read_count(struct parser *p, size_t *n)
+{
+    uint32_t v = 0;
+    if (read_int(p, 0, "a non-negative integer count", "count", &v))
+        return -1;
+    *n = v;
+    return 0;
+}
+
+/* Reads an index into a list of n things called one/many ("pigment",
+ * "pigments"); *at (may be NULL) gets its token. */
+static int read_index(struct parser *p, const char *one, const char *many,
+                      size_t n, size_t *idx, struct token *at)
+{
+    uint32_t v = 0;
+    enum uint_kind k = token_uint(&p->tok, &v);
+    if (at)
+        *at = p->tok;
+    if (k == UINT_NOT) {
+        char what[64];
+        snprintf(what, sizeof what, "a non-negative integer %s index", one);
+        return fail_expected(p, what);
+    }
+    if (k == UINT_TOO_BIG || v >= n) {
+        char digits[48];
+        digits_text(&p->tok, digits, sizeof digits);
+        return fail_at(p, &p->tok, "%s index %s is out of range (%zu %s)",
+                       one, digits, n, n == 1 ? one : many);
+    }
+    *idx = v;
+    next(p);
+    return 0;
+}
+
+/* Grows an array to hold at least need entries, doubling, so a count in
+ * the file never decides an allocation by itself. Returns the (possibly
+ * moved) array, or NULL when out of memory (arr is then still valid). */
+static void *grow(struct parser *p, void *arr, size_t *cap, size_t need,
+                  size_t elem)
+{
+    if (need <= *cap)
+        return arr;
+    size_t ncap = *cap ? *cap : 8;
+    while (ncap < need && ncap <= SIZE_MAX / 2)
+        ncap *= 2;
+    if (ncap < need || ncap > SIZE_MAX / elem) {
+        fail_oom(p);
+        return NULL;
+    }
+    void *bigger = realloc(arr, ncap * elem);
+    if (!bigger) {
+        fail_oom(p);
+        return NULL;
+    }
+    *cap = ncap;
+    return bigger;
+}
+
+/* ---- camera ------------------------------------------------------------ */
+
+/* The optional header variant: an output name (ignored: the command line
+ * names the output), then W H. A first token that is not a number marks
+ * it; a number-like name such as "1.ppm" is a malformed number instead. */
+static int parse_header(struct parser *p)
+{
+    uint32_t w = 0, h = 0;
+    if (p->tok.kind != TOKEN_WORD)
+        return 0;
+    next(p);
+    struct token w_at = p->tok;
+    if (read_int(p, 1, "a positive integer image width", "image width", &w))
+        return -1;
+    struct token h_at = p->tok;
+    if (read_int(p, 1, "a positive integer image height", "image height", &h))
+        return -1;
+    if (w > TP2_MAX_IMAGE_SIDE || h > TP2_MAX_IMAGE_SIDE)
+        return fail_at(p, w > TP2_MAX_IMAGE_SIDE ? &w_at : &h_at,
+                       "image %s %u is too large (at most %d)",
+                       w > TP2_MAX_IMAGE_SIDE ? "width" : "height",
+                       w > TP2_MAX_IMAGE_SIDE ? w : h, TP2_MAX_IMAGE_SIDE);
+    p->s.has_size = 1;
+    p->s.width = (int)w;
+    p->s.height = (int)h;
+    return 0;
+}
+
+/* Scales v to unit length without overflow; returns 0 if v is zero. */
+static int unit(const double v[3], double u[3])
+{
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    if (m == 0)
+        return 0;
+    double a[3] = { v[0] / m, v[1] / m, v[2] / m };
+    double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int i = 0; i < 3; i++)
+        u[i] = a[i] / len;
+    return 1;
+}
+
+/* 1 if up gives no direction across the view: zero, or parallel to
+ * center - eye within PARALLEL_EPS (relative, so any scale works). */
+static int up_is_parallel(const struct scene *s)
+{
+    double d[3], w[3], u[3];
+    for (int i = 0; i < 3; i++)
+        d[i] = s->center[i] - s->eye[i];
+    if (!isfinite(d[0]) || !isfinite(d[1]) || !isfinite(d[2]))
+        for (int i = 0; i < 3; i++) /* same direction, cannot overflow */
+            d[i] = s->center[i] / 2 - s->eye[i] / 2;
+    if (!unit(d, w) || !unit(s->up, u))
+        return 1;
+    double c[3] = { w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2],
+                    w[0] * u[1] - w[1] * u[0] };
+    return sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) < PARALLEL_EPS;
+}
+
+static int parse_camera(struct parser *p)
+{
+    struct scene *s = &p->s;
+    struct token center_at, up_at, fov_at;
+    if (read_numbers(p, s->eye, 3, NULL) ||
+        read_numbers(p, s->center, 3, &center_at))
+        return -1;
+    if (s->eye[0] == s->center[0] && s->eye[1] == s->center[1] &&
+        s->eye[2] == s->center[2])
+        return fail_at(p, &center_at, "center must differ from eye");
+    if (read_numbers(p, s->up, 3, &up_at))
+        return -1;
+    if (up_is_parallel(s))
+        return fail_at(p, &up_at,
+                       "up vector is parallel to the view direction");
+    if (read_number(p, &s->fov, &fov_at))
+        return -1;
+    if (!(s->fov > 0 && s->fov < 180))
+        return fail_value(p, &fov_at,
+                          "a field of view between 0 and 180 degrees "
+                          "(exclusive)");
+    return 0;
+}
+
+/* ---- lights, pigments, finishes ---------------------------------------- */
+
+static int parse_light(struct parser *p, struct scene_light *l)
+{
+    if (read_numbers(p, l->pos, 3, NULL) || read_numbers(p, l->color, 3, NULL))
+        return -1;
+    for (int i = 0; i < 3; i++)
+        if (read_bounded(p, &l->att[i], 1,
+                         "a non-negative attenuation coefficient"))
+            return -1;
+    return 0;
+}
+
+static int parse_lights(struct parser *p)
+{
+    struct scene *s = &p->s;
+    size_t n = 0;
+    if (read_count(p, &n))
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        void *a = grow(p, s->lights, &p->cap_lights, i + 1, sizeof *s->lights);
+        if (!a)
+            return -1;
+        s->lights = a;
+        memset(&s->lights[i], 0, sizeof s->lights[i]);
+        s->nlights = i + 1;
+        if (parse_light(p, &s->lights[i]))
+            return -1;
+    }
+    return 0;
+}
+
+/* Pigment types of SPEC.md that tp2 does not read yet. */
+static const char *const unsupported_pigments[] = { "gradient", "texmap",
+                                                    NULL };
+
+static int parse_pigment(struct parser *p, struct scene_pigment *pg)
+{
+    struct token kw = p->tok;
+    if (is_word(&kw, "solid")) {
+        next(p);
+        pg->kind = PIGMENT_SOLID;
+        return read_numbers(p, pg->color1, 3, NULL);
+    }
+    if (is_word(&kw, "checker")) {
+        next(p);
+        pg->kind = PIGMENT_CHECKER;
+        if (read_numbers(p, pg->color1, 3, NULL) ||
+            read_numbers(p, pg->color2, 3, NULL))
+            return -1;
+        return read_bounded(p, &pg->scale, 0, "a positive checker cube side");
+    }
+    if (is_one_of(&kw, unsupported_pigments)) {
+        char q[LEXER_QUOTE_SIZE];
+        token_describe(&kw, q, sizeof q);
+        return fail_at(p, &kw, "pigment type %s is not supported yet", q);
+    }
+    return fail_expected(p, "'solid' or 'checker'");
+}
+
+static int parse_pigments(struct parser *p)
+{
+    struct scene *s = &p->s;
+    size_t n = 0;
+    if (read_count(p, &n))
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        void *a = grow(p, s->pigments, &p->cap_pigments, i + 1,
+                       sizeof *s->pigments);
+        if (!a)
+            return -1;
+        s->pigments = a;
+        memset(&s->pigments[i], 0, sizeof s->pigments[i]);
+        s->npigments = i + 1;
+        if (parse_pigment(p, &s->pigments[i]))
+            return -1;
+    }
+    return 0;
+}
+
+static int parse_finish(struct parser *p, struct scene_finish *f)
+{
+    double v[6];
+    struct token ior_at;
+    if (read_numbers(p, v, 6, NULL) || read_number(p, &f->ior, &ior_at))
+        return -1;
+    f->ka = v[0];
+    f->kd = v[1];
+    f->ks = v[2];
+    f->n = v[3];
+    f->kr = v[4];
+    f->kt = v[5];
+    if (f->kt > 0 && !(f->ior > 0))
+        return fail_value(p, &ior_at,
+                          "a positive index of refraction since kt > 0");
+    return 0;
+}
+
+static int parse_finishes(struct parser *p)
+{
+    struct scene *s = &p->s;
+    size_t n = 0;
+    if (read_count(p, &n))
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        void *a = grow(p, s->finishes, &p->cap_finishes, i + 1,
+                       sizeof *s->finishes);
+        if (!a)
+            return -1;
+        s->finishes = a;
+        memset(&s->finishes[i], 0, sizeof s->finishes[i]);
+        s->nfinishes = i + 1;
+        if (parse_finish(p, &s->finishes[i]))
+            return -1;
+    }
+    return 0;
+}
+
+/* ---- objects ----------------------------------------------------------- */
+
+/* Object types of SPEC.md that tp2 does not read yet. */
+static const char *const unsupported_objects[] = {
+    "polyhedron", "box", "cylinder", "cone", "torus", "quadric", "triangle",
+    "mesh", NULL
+};
+
+static int parse_sphere(struct parser *p, struct scene_object *o)
+{
+    o->kind = OBJECT_SPHERE;
+    if (read_numbers(p, o->p, 3, NULL))
+        return -1;
+    return read_bounded(p, &o->p[3], 0, "a positive sphere radius");
+}
+
+static int parse_plane(struct parser *p, struct scene_object *o)
+{
+    struct token a_at;
+    o->kind = OBJECT_PLANE;
+    if (read_numbers(p, o->p, 3, &a_at))
+        return -1;
+    if (o->p[0] == 0 && o->p[1] == 0 && o->p[2] == 0)
+        return fail_at(p, &a_at, "plane normal (a b c) must not be zero");
+    return read_number(p, &o->p[3], NULL);
+}
+
+static int parse_object(struct parser *p, struct scene_object *o)
+{
+    const struct scene *s = &p->s;
+    if (read_index(p, "pigment", "pigments", s->npigments, &o->pigment,
+                   NULL) ||
+        read_index(p, "finish", "finishes", s->nfinishes, &o->finish, NULL))
+        return -1;
+    struct token kw = p->tok;
+    if (is_word(&kw, "sphere")) {
+        next(p);
+        return parse_sphere(p, o);
+    }
+    if (is_word(&kw, "plane")) {
+        next(p);
+        return parse_plane(p, o);
+    }
+    if (is_one_of(&kw, unsupported_objects)) {
+        char q[LEXER_QUOTE_SIZE];
+        token_describe(&kw, q, sizeof q);
+        return fail_at(p, &kw, "object type %s is not supported yet", q);
+    }
+    return fail_expected(p, "'sphere' or 'plane'");
+}
+
+static int parse_objects(struct parser *p)
+{
+    struct scene *s = &p->s;
+    size_t n = 0;
+    if (read_count(p, &n))
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        void *a = grow(p, s->objects, &p->cap_objects, i + 1,
+                       sizeof *s->objects);
+        if (!a)
+            return -1;
+        s->objects = a;
+        memset(&s->objects[i], 0, sizeof s->objects[i]);
+        s->nobjects = i + 1;
+        if (parse_object(p, &s->objects[i]))
+            return -1;
+    }
+    return 0;
+}
+
+/* ---- trailing directives ----------------------------------------------- */
+
+static int parse_samples(struct parser *p)
+{
+    uint32_t n = 0;
+    if (read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
+                         "sample count", &n))
+        return -1;
+    p->s.has_samples = 1;
+    p->s.samples = (int)n;
+    return 0;
+}
+
+static int parse_lens(struct parser *p)
+{
+    if (read_bounded(p, &p->s.lens_radius, 1, "a non-negative lens radius") ||
+        read_bounded(p, &p->s.lens_focal, 0, "a positive focal distance"))
+        return -1;
+    p->s.has_lens = 1;
+    return 0;
+}
+
+static int parse_fog(struct parser *p)
+{
+    if (read_numbers(p, p->s.fog_color, 3, NULL) ||
+        read_bounded(p, &p->s.fog_density, 1, "a non-negative fog density"))
+        return -1;
+    p->s.has_fog = 1;
+    return 0;
+}
+
+static int parse_arealight(struct parser *p)
+{
+    struct scene *s = &p->s;
+    struct token at;
+    uint32_t n = 0;
+    if (read_index(p, "light", "lights", s->nlights, &s->arealight_index,
+                   &at))
+        return -1;
+    if (s->arealight_index == 0)
+        return fail_at(p, &at, "light 0 is the ambient light and cannot be "
+                               "an area light");
+    if (read_bounded(p, &s->arealight_radius, 0,
+                     "a positive area light radius") ||
+        read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
+                         "sample count", &n))
+        return -1;
+    s->has_arealight = 1;
+    s->arealight_samples = (int)n;
+    return 0;
+}
+
+struct directive {
+    const char *name;
+    int (*parse)(struct parser *p);
+};
+
+static const struct directive directives[] = {
+    { "samples", parse_samples },
+    { "lens", parse_lens },
+    { "fog", parse_fog },
+    { "arealight", parse_arealight },
+};
+
+#define NDIRECTIVES (sizeof directives / sizeof directives[0])
+
+/* Directives until the end of the file, any order, each at most once. */
+static int parse_directives(struct parser *p)
+{
+    struct token first[NDIRECTIVES];
+    int seen[NDIRECTIVES] = { 0 };
+    while (p->tok.kind != TOKEN_EOF) {
+        size_t i = 0;
+        while (i < NDIRECTIVES && !is_word(&p->tok, directives[i].name))
+            i++;
+        if (i == NDIRECTIVES)
+            return fail_expected(p, "'samples', 'lens', 'fog', 'arealight' "
+                                    "or end of file");
+        if (seen[i])
+            return fail_at(p, &p->tok, "duplicate '%s' directive (first at "
+                                       "%zu:%zu)", directives[i].name,
+                           first[i].line, first[i].col);
+        seen[i] = 1;
+        first[i] = p->tok;
+        next(p);
+        if (directives[i].parse(p))
+            return -1;
+    }
+    return 0;
+}
+
+/* ---- entry points ------------------------------------------------------ */
+
+/* The sections in file order; the first error stops everything. */
+static int parse_scene(struct parser *p)
+{
+    if (parse_header(p) || parse_camera(p) || parse_lights(p) ||
+        parse_pigments(p) || parse_finishes(p) || parse_objects(p) ||
+        parse_directives(p))
+        return -1;
+    return 0;
+}
+
+int scene_parse_text(const char *name, const char *text, size_t len,
+                     struct scene *out, char *err, size_t errsize)
+{
+    struct parser p;
+    memset(&p, 0, sizeof p);
+    memset(out, 0, sizeof *out);
+    p.name = name ? name : "<input>";
+    p.err = err;
+    p.errsize = errsize;
+    if (err && errsize > 0)
+        err[0] = '\0';
+    if (lexer_init(&p.lx, text, len)) {
+        lexer_free(&p.lx);
+        return fail_oom(&p);
+    }
+    next(&p);
+    int rc = parse_scene(&p);
+    lexer_free(&p.lx);
+    if (rc) {
+        scene_free(&p.s);
+        return -1;
+    }
+    *out = p.s;
+    return 0;
+}
+
+/* Reads a whole file into a malloc'd buffer. Returns 0, or -1 with errno
+ * saying why. */
+static int read_all(const char *path, char **text, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    errno = 0;
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    int saved = ENOMEM;
+    while (buf) {
+        n += fread(buf + n, 1, cap - n, f);
+        if (ferror(f)) {
+            saved = errno ? errno : EIO;
+            break;
+        }
+        if (n < cap) { /* fread stopped short without an error: end */
+            fclose(f);
+            *text = buf;
+            *len = n;
+            return 0;
+        }
+        char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
+        if (!bigger)
+            break;
+        buf = bigger;
+        cap *= 2;
+    }
+    free(buf);
+    fclose(f);
+    errno = saved;
+    return -1;
+}
+
+int scene_parse_file(const char *path, struct scene *out, char *err,
+                     size_t errsize)
+{
+    char *text = NULL;
+    size_t len = 0;
+    memset(out, 0, sizeof *out);
+    errno = 0;
+    if (read_all(path, &text, &len)) {
+        if (err && errsize > 0)
+            snprintf(err, errsize, "tp2: cannot read '%s': %s", path,
+                     strerror(errno));
+        return -1;
+    }
+    int rc = scene_parse_text(path, text, len, out, err, errsize);
+    free(text);
+    return rc;
+}

@@ -1,0 +1,560 @@
+/* test_parser.c: unit tests of scene_parse_text on inline scenes.
+ *
+ * Every grammar rule with its parsed values checked, and every error class
+ * with its exact message. Prints "N passed, M failed" last; exits 0 only
+ * when nothing failed. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_parse.h"
+
+static int passed, failed;
+
+static void check(int ok, const char *what, int line)
+{
+    if (ok) {
+        passed++;
+        return;
+    }
+    failed++;
+    printf("FAIL line %d: %s\n", line, what);
+}
+
+#define CHECK(cond) check((cond) != 0, #cond, __LINE__)
+
+static int vec_eq(const double *v, double x, double y, double z)
+{
+    return v[0] == x && v[1] == y && v[2] == z;
+}
+
+/* A valid scene, one section per macro, so errors can be placed in it.
+ * Lines: camera 1-4, lights 5-7, pigments 8-9, finishes 10-11,
+ * objects 12-13, directives from 14. */
+#define CAM "0 0 0\n0 0 -1\n0 1 0\n45\n"
+#define LIGHTS "2\n0 0 0 1 1 1 1 0 0\n10 10 10 1 1 1 1 0 0\n"
+#define PIGS "1\nsolid 1 0 0\n"
+#define FINS "1\n0.2 0.6 0.3 20 0 0 0\n"
+#define OBJS "1\n0 0 sphere 0 0 -5 1\n"
+#define BASE CAM LIGHTS PIGS FINS OBJS
+
+/* Parses text that must be valid; on failure reports it and returns a
+ * zeroed scene (whose checks then fail too). */
+static struct scene parse_ok(const char *text, int line)
+{
+    struct scene s;
+    char err[512];
+    int rc = scene_parse_text("t.txt", text, strlen(text), &s, err, sizeof err);
+    check(rc == 0, "parse succeeds", line);
+    if (rc != 0)
+        printf("  error: %s\n", err);
+    return s;
+}
+
+/* Parses len bytes that must fail with exactly want, leaving *out zero. */
+static void expect_error_n(const char *text, size_t len, const char *want,
+                           int line)
+{
+    struct scene s, zero;
+    char err[512];
+    memset(&s, 0xab, sizeof s);
+    memset(&zero, 0, sizeof zero);
+    int rc = scene_parse_text("t.txt", text, len, &s, err, sizeof err);
+    if (rc == -1 && strcmp(err, want) == 0 &&
+        memcmp(&s, &zero, sizeof s) == 0) {
+        passed++;
+        return;
+    }
+    failed++;
+    printf("FAIL line %d: rc %d\n  got  %s\n  want %s\n", line, rc,
+           rc ? err : "(parsed)", want);
+    if (rc == 0)
+        scene_free(&s);
+}
+
+#define EXPECT_ERROR(text, want) \
+    expect_error_n((text), strlen(text), (want), __LINE__)
+
+/* ---- valid scenes ------------------------------------------------------ */
+
+static void test_plain_variant(void)
+{
+    struct scene s = parse_ok(BASE, __LINE__);
+    CHECK(!s.has_size && s.width == 0 && s.height == 0);
+    CHECK(vec_eq(s.eye, 0, 0, 0) && vec_eq(s.center, 0, 0, -1));
+    CHECK(vec_eq(s.up, 0, 1, 0) && s.fov == 45);
+    CHECK(s.nlights == 2 && vec_eq(s.lights[1].pos, 10, 10, 10));
+    CHECK(vec_eq(s.lights[1].color, 1, 1, 1) && vec_eq(s.lights[1].att, 1, 0, 0));
+    CHECK(s.npigments == 1 && s.pigments[0].kind == PIGMENT_SOLID);
+    CHECK(vec_eq(s.pigments[0].color1, 1, 0, 0));
+    CHECK(s.nfinishes == 1 && s.finishes[0].ka == 0.2 &&
+          s.finishes[0].kd == 0.6 && s.finishes[0].ks == 0.3 &&
+          s.finishes[0].n == 20 && s.finishes[0].kr == 0 &&
+          s.finishes[0].kt == 0 && s.finishes[0].ior == 0);
+    CHECK(s.nobjects == 1 && s.objects[0].kind == OBJECT_SPHERE);
+    CHECK(s.objects[0].pigment == 0 && s.objects[0].finish == 0);
+    CHECK(vec_eq(s.objects[0].p, 0, 0, -5) && s.objects[0].p[3] == 1);
+    CHECK(!s.has_samples && !s.has_lens && !s.has_fog && !s.has_arealight);
+    scene_free(&s);
+    CHECK(s.lights == NULL && s.nobjects == 0);
+}
+
+static void test_header_variant(void)
+{
+    struct scene s = parse_ok("out.ppm\n640 480\n" BASE, __LINE__);
+    CHECK(s.has_size && s.width == 640 && s.height == 480);
+    CHECK(s.fov == 45 && s.nobjects == 1);
+    scene_free(&s);
+    /* A name that starts like a path, not a number. */
+    s = parse_ok("./out/test-1.ppm 1 1\n" BASE, __LINE__);
+    CHECK(s.has_size && s.width == 1 && s.height == 1);
+    scene_free(&s);
+}
+
+static void test_comments(void)
+{
+    struct scene s = parse_ok("# leading comment\n"
+                              "0 0 0 # eye\n"
+                              "0 0 -1#center, no space before '#'\n"
+                              "0 1 0\n# between\n45\n"
+                              "2 # count\n0 0 0 1 1 1 1 0 0\n"
+                              "10 10 10 1 1 1 # mid-entry\n 1 0 0\n"
+                              PIGS FINS OBJS "# trailing, no newline",
+                              __LINE__);
+    CHECK(vec_eq(s.center, 0, 0, -1) && s.nlights == 2);
+    CHECK(vec_eq(s.lights[1].att, 1, 0, 0) && s.nobjects == 1);
+    scene_free(&s);
+}
+
+static void test_number_forms(void)
+{
+    struct scene s = parse_ok("1-10 5\n0 2.5.3\n+0 -.5e1 1.\n2e1\n"
+                              "0\n0\n0\n0\n",
+                              __LINE__);
+    CHECK(vec_eq(s.eye, 1, -10, 5));
+    CHECK(vec_eq(s.center, 0, 2.5, .3));
+    CHECK(vec_eq(s.up, 0, -5, 1) && s.fov == 20);
+    CHECK(s.nlights == 0 && s.npigments == 0 && s.nobjects == 0);
+    scene_free(&s);
+    /* strtod's forms: hex floats, underflow to (almost) zero, leading
+     * zeros in counts. */
+    s = parse_ok("0 0 0 0 0 -0x1p1 0 1 0 45\n"
+                 "001\n0 0 0 1e-400 1 1 1 0 0\n0 0 0\n",
+                 __LINE__);
+    CHECK(s.center[2] == -2 && s.nlights == 1);
+    CHECK(s.lights[0].color[0] < 1e-300 && s.lights[0].color[0] >= 0);
+    scene_free(&s);
+}
+
+static void test_whitespace_forms(void)
+{
+    struct scene s = parse_ok("0\t0\t0\r\n0 0 -1\r\n0 1 0\r\n45\r\n"
+                              "1\r\n0 0 0\t.5 .5 .5\t1 0 0\r\n"
+                              "1\r\nchecker\t\t1 0 1  0 0 1  2.5\r\n"
+                              "1\r\n0.2 0.6 0.3 20 0 0 0\r\n"
+                              "1\r\n0 0 plane 0 1 0 10\r\n",
+                              __LINE__);
+    CHECK(s.pigments[0].kind == PIGMENT_CHECKER);
+    CHECK(vec_eq(s.pigments[0].color1, 1, 0, 1));
+    CHECK(vec_eq(s.pigments[0].color2, 0, 0, 1) && s.pigments[0].scale == 2.5);
+    CHECK(s.objects[0].kind == OBJECT_PLANE);
+    CHECK(vec_eq(s.objects[0].p, 0, 1, 0) && s.objects[0].p[3] == 10);
+    CHECK(vec_eq(s.lights[0].color, .5, .5, .5));
+    scene_free(&s);
+}
+
+static void test_directives(void)
+{
+    struct scene s = parse_ok(BASE "fog 0.1 0.2 0.3 0.05\n"
+                                   "arealight 1 2.5 16\n"
+                                   "lens 0.25 7\nsamples 9\n",
+                              __LINE__);
+    CHECK(s.has_samples && s.samples == 9);
+    CHECK(s.has_lens && s.lens_radius == 0.25 && s.lens_focal == 7);
+    CHECK(s.has_fog && vec_eq(s.fog_color, 0.1, 0.2, 0.3) &&
+          s.fog_density == 0.05);
+    CHECK(s.has_arealight && s.arealight_index == 1 &&
+          s.arealight_radius == 2.5 && s.arealight_samples == 16);
+    scene_free(&s);
+    /* Zero where zero is allowed: pinhole lens, clear fog. */
+    s = parse_ok(BASE "lens 0 1 fog 0 0 0 0", __LINE__);
+    CHECK(s.has_lens && s.lens_radius == 0 && s.has_fog && s.fog_density == 0);
+    scene_free(&s);
+}
+
+static void test_semantic_edges(void)
+{
+    /* Transmission with ior < 1 is allowed; kt = 0 needs no ior. */
+    struct scene s = parse_ok(CAM LIGHTS PIGS "2\n0 0 0 1 0 0.5 0.9\n"
+                                              "0 0 0 1 0 0 -3\n0\n",
+                              __LINE__);
+    CHECK(s.nfinishes == 2 && s.finishes[0].ior == 0.9);
+    scene_free(&s);
+    /* Up only slightly off the view direction, and far-apart points whose
+     * difference overflows: both usable. */
+    s = parse_ok("0 0 0 0 0 -1 0 1e-6 1 90 0 0 0 0", __LINE__);
+    CHECK(s.up[1] == 1e-6);
+    scene_free(&s);
+    s = parse_ok("-1e308 0 0 1e308 0 0 0 1e-300 0 90 0 0 0 0", __LINE__);
+    CHECK(s.center[0] == 1e308);
+    scene_free(&s);
+}
+
+/* Object lists grow as they are read; many entries, each checked. */
+static void test_many_objects(void)
+{
+    enum { N = 1000 };
+    size_t cap = 64 + N * 32;
+    char *text = malloc(cap);
+    size_t len = (size_t)snprintf(text, cap, CAM LIGHTS PIGS FINS "%d\n", N);
+    for (int i = 0; i < N; i++)
+        len += (size_t)snprintf(text + len, cap - len,
+                                "0 0 sphere %d 0 -5 1\n", i);
+    struct scene s = parse_ok(text, __LINE__);
+    int ok = s.nobjects == N;
+    for (int i = 0; ok && i < N; i++)
+        ok = s.objects[i].p[0] == i;
+    CHECK(ok);
+    scene_free(&s);
+    free(text);
+}
+
+/* The text need not be NUL terminated: the last byte is a digit that
+ * strtod would extend past the buffer (ASan catches a read past it). */
+static void test_unterminated_buffer(void)
+{
+    static const char src[] = BASE "samples 4";
+    size_t len = sizeof src - 1;
+    char *text = malloc(len);
+    memcpy(text, src, len);
+    struct scene s;
+    char err[256];
+    CHECK(scene_parse_text("t.txt", text, len, &s, err, sizeof err) == 0);
+    CHECK(s.samples == 4);
+    scene_free(&s);
+    /* And an error at the very end of such a buffer. */
+    memcpy(text + len - 1, "0", 1);
+    CHECK(scene_parse_text("t.txt", text, len, &s, err, sizeof err) == -1);
+    CHECK(strcmp(err, "t.txt:14:9: error: expected a positive integer "
+                      "sample count, found '0'") == 0);
+    free(text);
+}
+
+static void test_api_edges(void)
+{
+    struct scene s;
+    char small[12];
+    /* A short err buffer gets a cut, terminated message; NULL is allowed. */
+    CHECK(scene_parse_text("t.txt", "", 0, &s, small, sizeof small) == -1);
+    CHECK(strcmp(small, "t.txt:1:1: ") == 0);
+    CHECK(scene_parse_text(NULL, "x", 1, &s, NULL, 0) == -1);
+    char err[256];
+    /* "x" is a header name; the width is missing. */
+    CHECK(scene_parse_text(NULL, "x", 1, &s, err, sizeof err) == -1);
+    CHECK(strcmp(err, "<input>:1:2: error: expected a positive integer "
+                      "image width, found end of file") == 0);
+    /* Files. */
+    CHECK(scene_parse_file("/nonexistent/tp2/scene.txt", &s, err,
+                           sizeof err) == -1);
+    CHECK(strcmp(err, "tp2: cannot read '/nonexistent/tp2/scene.txt': "
+                      "No such file or directory") == 0);
+    CHECK(scene_parse_file(".", &s, err, sizeof err) == -1);
+    CHECK(strncmp(err, "tp2: cannot read '.': ", 22) == 0);
+    /* scene_free is safe on a zeroed scene and twice. */
+    memset(&s, 0, sizeof s);
+    scene_free(&s);
+    scene_free(&s);
+    CHECK(s.lights == NULL);
+}
+
+/* ---- errors ------------------------------------------------------------ */
+
+static void test_lexical_errors(void)
+{
+    EXPECT_ERROR("", "t.txt:1:1: error: expected a number, found end of file");
+    EXPECT_ERROR("  # only a comment\n",
+                 "t.txt:2:1: error: expected a number, found end of file");
+    EXPECT_ERROR("0 0 0\n0 0 1abc",
+                 "t.txt:2:5: error: malformed number '1abc'");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n3x",
+                 "t.txt:4:1: error: malformed number '3x'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 2.5.3e",
+                 "t.txt:1:23: error: malformed number '.3e'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 1--2",
+                 "t.txt:1:20: error: malformed number '1--2'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 nan",
+                 "t.txt:1:20: error: expected a finite number, found 'nan'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 INF",
+                 "t.txt:1:20: error: expected a finite number, found 'INF'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 infinity",
+                 "t.txt:1:20: error: expected a finite number, "
+                 "found 'infinity'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 -nan",
+                 "t.txt:1:20: error: expected a finite number, found '-nan'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 1e999",
+                 "t.txt:1:20: error: expected a finite number, "
+                 "found '1e999'");
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 -1e400",
+                 "t.txt:1:20: error: expected a finite number, "
+                 "found '-1e400'");
+    /* "info" is a word, not "inf" followed by junk. */
+    EXPECT_ERROR("0 0 0 0 0 -1 0 1 0 info",
+                 "t.txt:1:20: error: expected a number, found 'info'");
+    EXPECT_ERROR("0 0 0\n0 0 sphre",
+                 "t.txt:2:5: error: expected a number, found 'sphre'");
+    EXPECT_ERROR("0 0 0\n\t\t-\n",
+                 "t.txt:2:3: error: expected a number, found '-'");
+    EXPECT_ERROR("0 0 0\r\n0 0 x\r\n",
+                 "t.txt:2:5: error: expected a number, found 'x'");
+}
+
+static void test_byte_errors(void)
+{
+    expect_error_n("0 0\0 0", 6, "t.txt:1:4: error: unexpected character "
+                                 "'\\x00'", __LINE__);
+    expect_error_n("\0", 1, "t.txt:1:1: error: unexpected character '\\x00'",
+                   __LINE__);
+    expect_error_n("0 0 0 # a comment \0 with a NUL\n", 31,
+                   "t.txt:1:19: error: unexpected character '\\x00'",
+                   __LINE__);
+    EXPECT_ERROR("0 0 \xff\xfe",
+                 "t.txt:1:5: error: expected a number, found '\\xff\\xfe'");
+    EXPECT_ERROR("0 0 0 0 0 "
+                 "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa",
+                 "t.txt:1:11: error: expected a number, found "
+                 "'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa...'");
+    EXPECT_ERROR("0 0 0 0 0 "
+                 "1234567890123456789012345678901234567890abc",
+                 "t.txt:1:11: error: malformed number "
+                 "'12345678901234567890123456789012...'");
+}
+
+static void test_truncation_errors(void)
+{
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n",
+                 "t.txt:4:1: error: expected a number, found end of file");
+    EXPECT_ERROR(CAM, "t.txt:5:1: error: expected a non-negative integer "
+                      "count, found end of file");
+    EXPECT_ERROR(CAM "2\n0 0 0 1 1 1 1 0 0\n10 10 10",
+                 "t.txt:7:9: error: expected a number, found end of file");
+    EXPECT_ERROR(CAM LIGHTS "1\nchecker 1 0 0 0 0 1\n",
+                 "t.txt:10:1: error: expected a number, found end of file");
+    EXPECT_ERROR(CAM LIGHTS "1\n",
+                 "t.txt:9:1: error: expected 'solid' or 'checker', "
+                 "found end of file");
+    EXPECT_ERROR(CAM LIGHTS PIGS "2\n0.2 0.6 0.3 20 0 0 0\n",
+                 "t.txt:12:1: error: expected a number, found end of file");
+    /* A huge count must fail at the end, not allocate for it. */
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "2000000000\n0 0 sphere 0 0 -5 1\n",
+                 "t.txt:14:1: error: expected a non-negative integer "
+                 "pigment index, found end of file");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0 sphere 0 0 -5",
+                 "t.txt:13:18: error: expected a number, found end of file");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0",
+                 "t.txt:13:4: error: expected 'sphere' or 'plane', "
+                 "found end of file");
+    EXPECT_ERROR("out.ppm 640",
+                 "t.txt:1:12: error: expected a positive integer image "
+                 "height, found end of file");
+    EXPECT_ERROR(BASE "fog 1 1 1",
+                 "t.txt:14:10: error: expected a number, found end of file");
+}
+
+static void test_count_errors(void)
+{
+    EXPECT_ERROR(CAM "-1\n", "t.txt:5:1: error: expected a non-negative "
+                             "integer count, found '-1'");
+    EXPECT_ERROR(CAM "3.0\n", "t.txt:5:1: error: expected a non-negative "
+                              "integer count, found '3.0'");
+    EXPECT_ERROR(CAM LIGHTS "1e3\n", "t.txt:8:1: error: expected a "
+                                     "non-negative integer count, found "
+                                     "'1e3'");
+    EXPECT_ERROR(CAM LIGHTS "+1\n", "t.txt:8:1: error: expected a "
+                                    "non-negative integer count, found '+1'");
+    EXPECT_ERROR(CAM LIGHTS PIGS "two\n", "t.txt:10:1: error: expected a "
+                                          "non-negative integer count, "
+                                          "found 'two'");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "2147483648\n",
+                 "t.txt:12:1: error: count 2147483648 is too large "
+                 "(at most 2147483647)");
+    EXPECT_ERROR("out.ppm -640 480\n", "t.txt:1:9: error: expected a "
+                                       "positive integer image width, "
+                                       "found '-640'");
+    EXPECT_ERROR("out.ppm 640 0\n", "t.txt:1:13: error: expected a positive "
+                                    "integer image height, found '0'");
+    EXPECT_ERROR("out.ppm 640 99999999999\n",
+                 "t.txt:1:13: error: image height 99999999999 is too large "
+                 "(at most 2147483647)");
+}
+
+static void test_index_errors(void)
+{
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n1 0 sphere 0 0 -5 1\n",
+                 "t.txt:13:1: error: pigment index 1 is out of range "
+                 "(1 pigment)");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 3 sphere 0 0 -5 1\n",
+                 "t.txt:13:3: error: finish index 3 is out of range "
+                 "(1 finish)");
+    EXPECT_ERROR(CAM LIGHTS PIGS "2\n1 1 1 1 0 0 0\n1 1 1 1 0 0 0\n"
+                                 "1\n0 2 plane 0 0 1 0\n",
+                 "t.txt:14:3: error: finish index 2 is out of range "
+                 "(2 finishes)");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n-1 0 sphere 0 0 -5 1\n",
+                 "t.txt:13:1: error: expected a non-negative integer "
+                 "pigment index, found '-1'");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0.0 sphere 0 0 -5 1\n",
+                 "t.txt:13:3: error: expected a non-negative integer "
+                 "finish index, found '0.0'");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n99999999999 0 sphere 0 0 -5 1\n",
+                 "t.txt:13:1: error: pigment index 99999999999 is out of "
+                 "range (1 pigment)");
+    EXPECT_ERROR(CAM LIGHTS "0\n" FINS "1\n0 0 sphere 0 0 -5 1\n",
+                 "t.txt:12:1: error: pigment index 0 is out of range "
+                 "(0 pigments)");
+}
+
+static void test_keyword_errors(void)
+{
+    EXPECT_ERROR(CAM LIGHTS "1\nSolid 1 0 0\n",
+                 "t.txt:9:1: error: expected 'solid' or 'checker', "
+                 "found 'Solid'");
+    EXPECT_ERROR(CAM LIGHTS "1\n1 0 0\n",
+                 "t.txt:9:1: error: expected 'solid' or 'checker', "
+                 "found '1'");
+    EXPECT_ERROR(CAM LIGHTS "1\ntexmap wood.bmp 0 0 0 0 0 0 0 0\n",
+                 "t.txt:9:1: error: pigment type 'texmap' is not supported "
+                 "yet");
+    EXPECT_ERROR(CAM LIGHTS "1\ngradient 0 0 0 1 1 1 0 0 0 1 1 1\n",
+                 "t.txt:9:1: error: pigment type 'gradient' is not "
+                 "supported yet");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0 cube 0 0 -5 1\n",
+                 "t.txt:13:5: error: expected 'sphere' or 'plane', "
+                 "found 'cube'");
+    static const char *const ext[] = { "polyhedron", "box", "cylinder",
+                                       "cone", "torus", "quadric",
+                                       "triangle", "mesh" };
+    for (size_t i = 0; i < sizeof ext / sizeof ext[0]; i++) {
+        char text[256], want[128];
+        snprintf(text, sizeof text, CAM LIGHTS PIGS FINS "1\n0 0 %s 1\n",
+                 ext[i]);
+        snprintf(want, sizeof want,
+                 "t.txt:13:5: error: object type '%s' is not supported yet",
+                 ext[i]);
+        expect_error_n(text, strlen(text), want, __LINE__);
+    }
+}
+
+static void test_camera_errors(void)
+{
+    EXPECT_ERROR("1 2 3\n1 2 3\n0 0 1\n45\n",
+                 "t.txt:2:1: error: center must differ from eye");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 0 5\n45\n",
+                 "t.txt:3:1: error: up vector is parallel to the view "
+                 "direction");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 0 0\n45\n",
+                 "t.txt:3:1: error: up vector is parallel to the view "
+                 "direction");
+    /* Relative test: tiny vectors, parallel, still parallel. */
+    EXPECT_ERROR("0 0 0\n1e-200 2e-200 0\n1e-300 2e-300 0\n45\n",
+                 "t.txt:3:1: error: up vector is parallel to the view "
+                 "direction");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n0\n",
+                 "t.txt:4:1: error: expected a field of view between 0 and "
+                 "180 degrees (exclusive), found '0'");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n180.0\n",
+                 "t.txt:4:1: error: expected a field of view between 0 and "
+                 "180 degrees (exclusive), found '180.0'");
+    EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n-30\n",
+                 "t.txt:4:1: error: expected a field of view between 0 and "
+                 "180 degrees (exclusive), found '-30'");
+}
+
+static void test_value_errors(void)
+{
+    EXPECT_ERROR(CAM "1\n0 0 0 1 1 1 1 -1 0\n",
+                 "t.txt:6:15: error: expected a non-negative attenuation "
+                 "coefficient, found '-1'");
+    EXPECT_ERROR(CAM LIGHTS "1\nchecker 1 1 1 0 0 0 0\n",
+                 "t.txt:9:21: error: expected a positive checker cube side, "
+                 "found '0'");
+    EXPECT_ERROR(CAM LIGHTS PIGS "1\n0 1 0 1 0 0.5 0\n",
+                 "t.txt:11:15: error: expected a positive index of "
+                 "refraction since kt > 0, found '0'");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0 sphere 0 0 -5 -1\n",
+                 "t.txt:13:19: error: expected a positive sphere radius, "
+                 "found '-1'");
+    EXPECT_ERROR(CAM LIGHTS PIGS FINS "1\n0 0 plane 0 0 0 5\n",
+                 "t.txt:13:11: error: plane normal (a b c) must not be zero");
+}
+
+static void test_directive_errors(void)
+{
+    EXPECT_ERROR(BASE "samples 4\nsamples 4\n",
+                 "t.txt:15:1: error: duplicate 'samples' directive "
+                 "(first at 14:1)");
+    EXPECT_ERROR(BASE "lens 0 1 fog 0 0 0 1 lens 0 1\n",
+                 "t.txt:14:22: error: duplicate 'lens' directive "
+                 "(first at 14:1)");
+    EXPECT_ERROR(BASE "samples 0\n",
+                 "t.txt:14:9: error: expected a positive integer sample "
+                 "count, found '0'");
+    EXPECT_ERROR(BASE "samples 2.5\n",
+                 "t.txt:14:9: error: expected a positive integer sample "
+                 "count, found '2.5'");
+    EXPECT_ERROR(BASE "lens -0.1 5\n",
+                 "t.txt:14:6: error: expected a non-negative lens radius, "
+                 "found '-0.1'");
+    EXPECT_ERROR(BASE "lens 0.1 0\n",
+                 "t.txt:14:10: error: expected a positive focal distance, "
+                 "found '0'");
+    EXPECT_ERROR(BASE "fog 1 1 1 -2\n",
+                 "t.txt:14:11: error: expected a non-negative fog density, "
+                 "found '-2'");
+    EXPECT_ERROR(BASE "arealight 0 1 4\n",
+                 "t.txt:14:11: error: light 0 is the ambient light and "
+                 "cannot be an area light");
+    EXPECT_ERROR(BASE "arealight 2 1 4\n",
+                 "t.txt:14:11: error: light index 2 is out of range "
+                 "(2 lights)");
+    EXPECT_ERROR(BASE "arealight 1 0 4\n",
+                 "t.txt:14:13: error: expected a positive area light radius, "
+                 "found '0'");
+    EXPECT_ERROR(BASE "arealight 1 1 0\n",
+                 "t.txt:14:15: error: expected a positive integer sample "
+                 "count, found '0'");
+    EXPECT_ERROR(BASE "junk\n",
+                 "t.txt:14:1: error: expected 'samples', 'lens', 'fog', "
+                 "'arealight' or end of file, found 'junk'");
+    EXPECT_ERROR(BASE "samples 2 7\n",
+                 "t.txt:14:11: error: expected 'samples', 'lens', 'fog', "
+                 "'arealight' or end of file, found '7'");
+    EXPECT_ERROR(BASE "Samples 2\n",
+                 "t.txt:14:1: error: expected 'samples', 'lens', 'fog', "
+                 "'arealight' or end of file, found 'Samples'");
+}
+
+int main(void)
+{
+    test_plain_variant();
+    test_header_variant();
+    test_comments();
+    test_number_forms();
+    test_whitespace_forms();
+    test_directives();
+    test_semantic_edges();
+    test_many_objects();
+    test_unterminated_buffer();
+    test_api_edges();
+    test_lexical_errors();
+    test_byte_errors();
+    test_truncation_errors();
+    test_count_errors();
+    test_index_errors();
+    test_keyword_errors();
+    test_camera_errors();
+    test_value_errors();
+    test_directive_errors();
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
