@@ -1,13 +1,11 @@
 #include "cli.h"
 
+#include "scene.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* Largest image side accepted: far beyond any display, small enough that
- * width * height * 16 bytes cannot overflow. */
-#define TP2_MAX_SIDE 32768
 
 void cli_usage(FILE *out)
 {
@@ -23,6 +21,10 @@ void cli_usage(FILE *out)
           "  --list-devices       list the Vulkan devices and exit\n"
           "  --precision P        float (default) or double: double-precision\n"
           "                       geometry, the reference image\n"
+          "  --spp N              samples per pixel (overrides the scene's\n"
+          "                       'samples'; default 1, the pixel center)\n"
+          "  --stats              print phase times and rays traced to stderr\n"
+          "  --quiet              no progress bar\n"
           "  --validate           enable the Khronos validation layer; any\n"
           "                       message fails the run (also TP2_VALIDATE=1)\n"
           "  --help               show this text and exit\n",
@@ -67,6 +69,15 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
         c->list_devices = true;
     } else if (strcmp(opt, "--validate") == 0) {
         c->validate = true;
+    } else if (strcmp(opt, "--stats") == 0) {
+        c->stats = true;
+    } else if (strcmp(opt, "--quiet") == 0) {
+        c->quiet = true;
+    } else if (strcmp(opt, "--spp") == 0) {
+        if (!(v = option_value(argc, argv, i)) ||
+            parse_int(v, 1, TP2_MAX_SAMPLES, &c->samples) != 0)
+            return usage_error("--spp needs a number of samples from 1 to 4096, found '%s'",
+                               v ? v : "nothing");
     } else if (strcmp(opt, "--device") == 0) {
         if (!(v = option_value(argc, argv, i)) ||
             parse_int(v, 0, INT_MAX, &c->device_index) != 0)
@@ -117,10 +128,10 @@ int cli_parse(int argc, char **argv, struct cli *c)
     c->infile = positional[0];
     c->outfile = positional[1];
     if (npos == 4) {
-        if (parse_int(positional[2], 1, TP2_MAX_SIDE, &c->width) != 0)
+        if (parse_int(positional[2], 1, TP2_MAX_IMAGE_SIDE, &c->width) != 0)
             return usage_error("X must be an integer from 1 to 32768, found '%s'",
                                positional[2]);
-        if (parse_int(positional[3], 1, TP2_MAX_SIDE, &c->height) != 0)
+        if (parse_int(positional[3], 1, TP2_MAX_IMAGE_SIDE, &c->height) != 0)
             return usage_error("Y must be an integer from 1 to 32768, found '%s'",
                                positional[3]);
     }

@@ -9,8 +9,11 @@ struct cli {
     const char *infile, *outfile;
     int width, height; /* 0 when not given */
     int device_index;  /* -1: the best device */
+    int samples;       /* --spp: samples per pixel; 0: the scene's */
     bool use_double;   /* --precision double */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
+    bool stats;        /* --stats: phase times and ray counts on stderr */
+    bool quiet;        /* --quiet: no progress bar */
     bool help, list_devices;
 };
 

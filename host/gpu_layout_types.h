@@ -18,7 +18,12 @@ struct TP2_T(gpu_frame) {
     TP2_RVEC4(w);       /* xyz: unit view direction (image plane at 1) */
     TP2_VEC4(ambient);  /* rgb: color of light 0 */
     TP2_VEC4(background);
+    TP2_VEC4(fog);      /* rgb, density */
+    TP2_VEC4(lens);     /* aperture radius, focal distance */
+    TP2_VEC4(area);     /* x: arealight radius */
     TP2_IVEC4(counts);  /* width, height, point lights, objects */
+    TP2_IVEC4(geometry); /* spheres, planes (after the spheres), BVH nodes */
+    TP2_IVEC4(sampling); /* lattice generator, arealight index, samples */
 };
 
 struct TP2_T(gpu_light) {

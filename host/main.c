@@ -1,8 +1,10 @@
 /* tp2: ray traces a scene file on a Vulkan device (README.TXT, SPEC.md). */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "cli.h"
+#include "clock.h"
 #include "image_write.h"
 #include "render.h"
 #include "scene.h"
@@ -26,28 +28,57 @@ static void image_size(const struct cli *c, const struct scene *s, int *w, int *
     }
 }
 
-static int render_to_file(const struct cli *c, const struct scene *s)
+/* --stats: where the time went and how many rays it bought. */
+static void print_stats(const struct render_stats *st, double parse, double write)
+{
+    static const char *kinds[TP2_STAT_COUNT] = {"camera", "shadow", "reflected",
+                                                "transmitted"};
+    uint64_t total = 0;
+    fprintf(stderr, "tp2: device     %s\n", st->device_name);
+    fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
+    fprintf(stderr, "tp2: device     %8.3f s (instance and device creation)\n", st->device);
+    fprintf(stderr, "tp2: upload     %8.3f s (packing, BVH, buffers)\n", st->upload);
+    fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
+    fprintf(stderr, "tp2: render     %8.3f s\n", st->render);
+    fprintf(stderr, "tp2: readback   %8.3f s\n", st->readback);
+    fprintf(stderr, "tp2: write      %8.3f s\n", write);
+    for (int i = 0; i < TP2_STAT_COUNT; i++) {
+        fprintf(stderr, "tp2: rays %-11s %14llu\n", kinds[i], (unsigned long long)st->rays[i]);
+        total += st->rays[i];
+    }
+    fprintf(stderr, "tp2: rays total       %14llu (%.2f Mrays/s while rendering)\n",
+            (unsigned long long)total, st->render > 0 ? total / st->render * 1e-6 : 0.0);
+}
+
+static int render_to_file(const struct cli *c, const struct scene *s, double parse_time)
 {
     struct render_options opt = {
         .device_index = c->device_index,
+        .samples = c->samples,
         .use_double = c->use_double,
         .validate = c->validate,
+        .count_rays = c->stats,
+        .progress = !c->quiet,
     };
+    struct render_stats stats;
     image_size(c, s, &opt.width, &opt.height);
     float *rgba = malloc((size_t)opt.width * (size_t)opt.height * 4 * sizeof *rgba);
     if (!rgba) {
         fputs("tp2: out of memory for the image\n", stderr);
         return EXIT_FAILURE;
     }
-    int rc = render_scene(s, &opt, rgba);
+    int rc = render_scene(s, &opt, rgba, &stats);
     if (rc == 0 && vkc_validation_message_count() > 0) {
         fprintf(stderr, "tp2: %u validation message(s); no image written\n",
                 vkc_validation_message_count());
         rc = -1;
     }
+    double t0 = clock_seconds();
     if (rc == 0)
         rc = image_write(c->outfile, image_format_of(c->outfile), opt.width,
                          opt.height, rgba);
+    if (rc == 0 && c->stats)
+        print_stats(&stats, parse_time, clock_seconds() - t0);
     free(rgba);
     return rc == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
@@ -70,11 +101,12 @@ int main(int argc, char **argv)
     }
     struct scene s;
     char err[512];
+    double t0 = clock_seconds();
     if (scene_parse_file(c.infile, &s, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return EXIT_FAILURE;
     }
-    int rc = render_to_file(&c, &s);
+    int rc = render_to_file(&c, &s, clock_seconds() - t0);
     scene_free(&s);
     return rc;
 }

@@ -4,6 +4,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "clock.h"
+#include "pipeline_cache.h"
+#include "progress.h"
 #include "scene_pack.h"
 #include "tp2_shared.h"
 #include "trace_double_spv.h"
@@ -22,6 +25,7 @@ struct renderer {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
     VkShaderModule shader;
+    VkPipelineCache cache;
     VkPipeline pipeline;
     VkDescriptorPool pool;
     VkDescriptorSet set;
@@ -29,6 +33,9 @@ struct renderer {
     VkCommandBuffer cmd;
     VkFence fence;
 };
+
+/* The shader counts rays in 64 bits, as (low, high) pairs of uints. */
+#define TP2_STATS_BYTES (2 * TP2_STAT_COUNT * sizeof(uint32_t))
 
 struct tile_push {
     int32_t origin[2];
@@ -42,11 +49,54 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
             return -1;
         memcpy(r->buffers[i].mapped, p->data[i], p->size[i]);
     }
-    return vk_buffer_create(&r->vk, image_size, true,
-                            &r->buffers[TP2_BINDING_IMAGE]);
+    if (vk_buffer_create(&r->vk, image_size, true, &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
+        vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0)
+        return -1;
+    memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
+    return 0;
 }
 
-static int create_pipeline(struct renderer *r, bool use_double)
+static void read_ray_counts(const uint32_t *words, uint64_t rays[TP2_STAT_COUNT])
+{
+    for (int i = 0; i < TP2_STAT_COUNT; i++)
+        rays[i] = (uint64_t)words[2 * i + 1] << 32 | words[2 * i];
+}
+
+/* The specialization constants of tp2_shared.h, in id order. */
+struct spec_values {
+    VkBool32 flags[TP2_SPEC_SAMPLES];
+    int32_t samples;
+    VkBool32 spheres;
+};
+
+static void spec_values(const struct scene_features *f, bool count_rays,
+                        struct spec_values *v, VkSpecializationMapEntry *map)
+{
+    *v = (struct spec_values){
+        .flags = {
+            [TP2_SPEC_REFLECT] = f->reflect,
+            [TP2_SPEC_REFRACT] = f->refract,
+            [TP2_SPEC_CHECKER] = f->checker,
+            [TP2_SPEC_PLANES] = f->planes,
+            [TP2_SPEC_FOG] = f->fog,
+            [TP2_SPEC_LENS] = f->lens,
+            [TP2_SPEC_AREA] = f->area,
+            [TP2_SPEC_STATS] = count_rays,
+        },
+        .samples = f->samples,
+        .spheres = f->spheres,
+    };
+    for (uint32_t id = 0; id < TP2_SPEC_SAMPLES; id++)
+        map[id] = (VkSpecializationMapEntry){id, (uint32_t)(id * sizeof(VkBool32)),
+                                             sizeof(VkBool32)};
+    map[TP2_SPEC_SAMPLES] = (VkSpecializationMapEntry){
+        TP2_SPEC_SAMPLES, offsetof(struct spec_values, samples), sizeof(int32_t)};
+    map[TP2_SPEC_SPHERES] = (VkSpecializationMapEntry){
+        TP2_SPEC_SPHERES, offsetof(struct spec_values, spheres), sizeof(VkBool32)};
+}
+
+static int create_pipeline(struct renderer *r, bool use_double,
+                           const struct scene_features *features, bool count_rays)
 {
     VkDescriptorSetLayoutBinding bindings[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
@@ -82,6 +132,15 @@ static int create_pipeline(struct renderer *r, bool use_double)
         .pCode = use_double ? tp2_trace_double : tp2_trace_float,
     };
     TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
+    struct spec_values values;
+    VkSpecializationMapEntry map[TP2_SPEC_COUNT];
+    spec_values(features, count_rays, &values, map);
+    VkSpecializationInfo spec = {
+        .mapEntryCount = TP2_SPEC_COUNT,
+        .pMapEntries = map,
+        .dataSize = sizeof values,
+        .pData = &values,
+    };
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {
@@ -89,11 +148,16 @@ static int create_pipeline(struct renderer *r, bool use_double)
             .stage = VK_SHADER_STAGE_COMPUTE_BIT,
             .module = r->shader,
             .pName = "main",
+            .pSpecializationInfo = &spec,
         },
         .layout = r->pipeline_layout,
     };
-    TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, VK_NULL_HANDLE, 1, &info,
-                                        NULL, &r->pipeline));
+    if (pipeline_cache_load(&r->vk, &r->cache) != 0)
+        return -1;
+    TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, r->cache, 1, &info, NULL,
+                                        &r->pipeline));
+    pipeline_cache_save(&r->vk, r->cache);
+    r->cache = VK_NULL_HANDLE;
     return 0;
 }
 
@@ -196,16 +260,23 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h)
     return 0;
 }
 
-static int run_tiles(struct renderer *r, int width, int height)
+static int run_tiles(struct renderer *r, int width, int height, bool show_progress)
 {
-    for (int y = 0; y < height; y += TP2_TILE)
-        for (int x = 0; x < width; x += TP2_TILE) {
+    struct progress bar;
+    progress_start(&bar, show_progress);
+    int tiles_x = (width + TP2_TILE - 1) / TP2_TILE;
+    int tiles_y = (height + TP2_TILE - 1) / TP2_TILE;
+    int rc = 0;
+    for (int ty = 0; ty < tiles_y && rc == 0; ty++)
+        for (int tx = 0; tx < tiles_x && rc == 0; tx++) {
+            int x = tx * TP2_TILE, y = ty * TP2_TILE;
             int w = width - x < TP2_TILE ? width - x : TP2_TILE;
             int h = height - y < TP2_TILE ? height - y : TP2_TILE;
-            if (run_tile(r, x, y, w, h) != 0)
-                return -1;
+            rc = run_tile(r, x, y, w, h);
+            progress_update(&bar, (double)(ty * tiles_x + tx + 1) / (tiles_x * tiles_y));
         }
-    return 0;
+    progress_finish(&bar);
+    return rc;
 }
 
 static void renderer_destroy(struct renderer *r)
@@ -217,6 +288,7 @@ static void renderer_destroy(struct renderer *r)
         vkDestroyCommandPool(d, r->command_pool, NULL);
         vkDestroyDescriptorPool(d, r->pool, NULL);
         vkDestroyPipeline(d, r->pipeline, NULL);
+        vkDestroyPipelineCache(d, r->cache, NULL);
         vkDestroyShaderModule(d, r->shader, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
         vkDestroyDescriptorSetLayout(d, r->set_layout, NULL);
@@ -240,7 +312,7 @@ static int check_image_size(const struct vkc *vk, VkDeviceSize bytes)
 }
 
 int render_scene(const struct scene *s, const struct render_options *opt,
-                 float *rgba)
+                 float *rgba, struct render_stats *stats)
 {
     struct renderer r = {0};
     struct packed_scene packed = {0};
@@ -249,18 +321,41 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .need_float64 = opt->use_double,
         .validate = opt->validate,
     };
+    struct pack_options pack_opt = {
+        .width = opt->width,
+        .height = opt->height,
+        .use_double = opt->use_double,
+        .samples = opt->samples,
+    };
     VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);
     int rc = -1;
-    if (scene_pack(s, opt->width, opt->height, opt->use_double, &packed) != 0) {
+    memset(stats, 0, sizeof *stats);
+    double t0 = clock_seconds();
+    if (vkc_create(&r.vk, &vk_opt) != 0 || check_image_size(&r.vk, image_size) != 0)
+        goto done;
+    snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
+    double t1 = clock_seconds();
+    if (scene_pack(s, &pack_opt, &packed) != 0) {
         fputs("tp2: out of memory\n", stderr);
         goto done;
     }
-    if (vkc_create(&r.vk, &vk_opt) != 0 || check_image_size(&r.vk, image_size) != 0 ||
-        create_buffers(&r, &packed, image_size) != 0 ||
-        create_pipeline(&r, opt->use_double) != 0 || create_descriptors(&r) != 0 ||
-        create_commands(&r) != 0 || run_tiles(&r, opt->width, opt->height) != 0)
+    if (create_buffers(&r, &packed, image_size) != 0)
         goto done;
+    double t2 = clock_seconds();
+    if (create_pipeline(&r, opt->use_double, &packed.features, opt->count_rays) != 0 ||
+        create_descriptors(&r) != 0 || create_commands(&r) != 0)
+        goto done;
+    double t3 = clock_seconds();
+    if (run_tiles(&r, opt->width, opt->height, opt->progress) != 0)
+        goto done;
+    double t4 = clock_seconds();
     memcpy(rgba, r.buffers[TP2_BINDING_IMAGE].mapped, (size_t)image_size);
+    read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
+    stats->device = t1 - t0;
+    stats->upload = t2 - t1;
+    stats->pipeline = t3 - t2;
+    stats->render = t4 - t3;
+    stats->readback = clock_seconds() - t4;
     rc = 0;
 done:
     renderer_destroy(&r);

@@ -8,19 +8,33 @@
 #include "scene.h"
 #include "tp2_shared.h"
 
-/* The scene's input buffers, indexed by binding (TP2_BINDING_FRAME ..
- * TP2_BINDING_OBJECTS). Each holds at least one element, since Vulkan has
- * no empty buffers; the frame's counts say how many are real. */
+/* The input buffers, indexed by binding (TP2_BINDING_FRAME ..
+ * TP2_BINDING_BVH); the image and stats buffers follow them. */
 #define TP2_INPUT_BUFFERS TP2_BINDING_IMAGE
 
-struct packed_scene {
-    void *data[TP2_INPUT_BUFFERS];
-    size_t size[TP2_INPUT_BUFFERS];
+/* What the shader is specialised for: the features the scene uses. */
+struct scene_features {
+    bool reflect, refract, checker, spheres, planes, fog, lens, area;
+    int samples;
 };
 
-/* Packs s for a width x height image, in doubles if use_double (the
- * reference shader) or floats. Returns 0, or -1 out of memory. */
-int scene_pack(const struct scene *s, int width, int height, bool use_double,
+struct pack_options {
+    int width, height;
+    bool use_double; /* pack for the double-precision (reference) shader */
+    int samples;     /* samples per pixel; 0: the scene's, else 1 */
+};
+
+struct packed_scene {
+    /* Each buffer holds at least one element (Vulkan has no empty
+     * buffers); the frame's counts say how many are real. */
+    void *data[TP2_INPUT_BUFFERS];
+    size_t size[TP2_INPUT_BUFFERS];
+    struct scene_features features;
+};
+
+/* Packs s: camera basis, lights, materials, spheres in BVH order followed
+ * by planes, and the BVH. Returns 0, or -1 out of memory (out zeroed). */
+int scene_pack(const struct scene *s, const struct pack_options *opt,
                struct packed_scene *out);
 
 /* Frees the buffers and zeroes p; safe on a zeroed one. */

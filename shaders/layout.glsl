@@ -1,15 +1,21 @@
 // layout.glsl: the GPU structs as the shader sees them (std430).
-// Twin of host/gpu_layout_types.h; keep field order and types identical.
+// Twin of host/gpu_layout_types.h (and struct bvh_node in host/bvh.h); keep
+// field names, order and types identical: tests/test_layout.c checks them.
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
 struct Frame {
     rvec4 eye;
-    rvec4 u;
-    rvec4 v;
-    rvec4 w;
-    vec4 ambient;
+    rvec4 u;          // right, scaled to half the image plane's width
+    rvec4 v;          // up, scaled to half its height
+    rvec4 w;          // unit view direction
+    vec4 ambient;     // rgb: color of light 0
     vec4 background;
-    ivec4 counts; // width, height, point lights, objects
+    vec4 fog;         // rgb, density
+    vec4 lens;        // aperture radius, focal distance
+    vec4 area;        // x: arealight radius
+    ivec4 counts;     // width, height, point lights, objects
+    ivec4 geometry;   // spheres, planes (after the spheres), BVH nodes
+    ivec4 sampling;   // lattice generator, arealight index, arealight samples
 };
 
 struct Light {
@@ -35,12 +41,32 @@ struct Object {
     ivec4 ids;  // kind, pigment, finish
 };
 
+struct BvhNode {
+    vec3 lo;
+    int first; // inner: left child (right = first + 1); leaf: first object
+    vec3 hi;
+    int count; // 0: inner; else objects [first, first + count)
+};
+
 layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };
 layout(std430, set = 0, binding = TP2_BINDING_LIGHTS) readonly buffer LightBuf { Light lights[]; };
 layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentBuf { Pigment pigments[]; };
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };
 layout(std430, set = 0, binding = TP2_BINDING_OBJECTS) readonly buffer ObjectBuf { Object objects[]; };
+layout(std430, set = 0, binding = TP2_BINDING_BVH) readonly buffer BvhBuf { BvhNode nodes[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) writeonly buffer ImageBuf { vec4 pixels[]; };
+layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf { uint ray_counts[2 * TP2_STAT_COUNT]; }; // (low, high) pairs
 
 // The tile this dispatch covers, in pixels.
 layout(push_constant) uniform Tile { ivec2 tile_origin; };
+
+layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
+layout(constant_id = TP2_SPEC_REFRACT) const bool HAS_REFRACT = true;
+layout(constant_id = TP2_SPEC_CHECKER) const bool HAS_CHECKER = true;
+layout(constant_id = TP2_SPEC_PLANES) const bool HAS_PLANES = true;
+layout(constant_id = TP2_SPEC_FOG) const bool HAS_FOG = false;
+layout(constant_id = TP2_SPEC_LENS) const bool HAS_LENS = false;
+layout(constant_id = TP2_SPEC_AREA) const bool HAS_AREA = false;
+layout(constant_id = TP2_SPEC_STATS) const bool COUNT_RAYS = false;
+layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
+layout(constant_id = TP2_SPEC_SPHERES) const bool HAS_SPHERES = true;

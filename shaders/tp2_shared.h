@@ -11,8 +11,34 @@
 #define TP2_BINDING_PIGMENTS 2
 #define TP2_BINDING_FINISHES 3
 #define TP2_BINDING_OBJECTS 4
-#define TP2_BINDING_IMAGE 5
-#define TP2_BINDING_COUNT 6
+#define TP2_BINDING_BVH 5
+#define TP2_BINDING_IMAGE 6
+#define TP2_BINDING_STATS 7
+#define TP2_BINDING_COUNT 8
+
+/* Specialization constants: the pipeline is compiled for the features the
+ * scene uses, so a scene without them pays nothing for them. */
+#define TP2_SPEC_REFLECT 0   /* bool: some finish has kr > 0 */
+#define TP2_SPEC_REFRACT 1   /* bool: some finish has kt > 0 */
+#define TP2_SPEC_CHECKER 2   /* bool: some pigment is a checker */
+#define TP2_SPEC_PLANES 3    /* bool: the scene has planes */
+#define TP2_SPEC_FOG 4       /* bool: fog directive */
+#define TP2_SPEC_LENS 5      /* bool: lens directive */
+#define TP2_SPEC_AREA 6      /* bool: arealight directive */
+#define TP2_SPEC_STATS 7     /* bool: count rays (--stats) */
+#define TP2_SPEC_SAMPLES 8   /* int: samples per pixel */
+#define TP2_SPEC_SPHERES 9   /* bool: the scene has spheres */
+#define TP2_SPEC_COUNT 10
+
+/* Ray counters in the stats buffer, by kind. */
+#define TP2_STAT_CAMERA 0
+#define TP2_STAT_SHADOW 1
+#define TP2_STAT_REFLECTED 2
+#define TP2_STAT_TRANSMITTED 3
+#define TP2_STAT_COUNT 4
+
+/* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
+#define TP2_BVH_STACK 32
 
 /* Enumerations stored in ivec4 fields. */
 #define TP2_PIGMENT_SOLID 0

@@ -1,0 +1,447 @@
+#include "bvh.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* SAH bins along the split axis: more bins find better planes, fewer are
+ * faster; 16 is the usual balance. */
+#define BVH_BINS 16
+/* A node with at most this many spheres is always a leaf. */
+#define BVH_MIN_SPLIT 2
+/* Above this many spheres a node is split even when SAH prefers a leaf. */
+#define BVH_MAX_LEAF 8
+/* Cost of visiting an inner node, relative to one sphere test. */
+#define BVH_TRAVERSAL_COST 1.0
+/* The deepest a node may sit (root = 0); see the invariant in bvh.h. */
+#define BVH_MAX_NODE_DEPTH (TP2_BVH_MAX_DEPTH - 1)
+/* Most spheres accepted: 2 n - 1 nodes must be indexable by int32. */
+#define BVH_MAX_SPHERES ((size_t)1 << 30)
+
+/* One sphere while building: its float box, its center (the key that is
+ * binned and split on), and where it came from. Partitions move these. */
+struct prim {
+    float lo[3], hi[3];
+    double c[3];
+    uint32_t index;
+    uint8_t bin; /* bin along the current node's axis, between two passes */
+};
+
+/* A node whose spheres are prims[begin, end), still to be filled in;
+ * cmin, cmax bound their centers (computed by whoever made the task). */
+struct task {
+    uint32_t node, begin, end, depth;
+    double cmin[3], cmax[3];
+};
+
+/* The spheres whose centers fall in one SAH bin. */
+struct bin {
+    uint32_t count;
+    float lo[3], hi[3];
+    double cmin[3], cmax[3];
+};
+
+/* The largest float <= x (FLT_MAX for x above float range: the exact box
+ * then lies beyond anything finite, and the upper bound becomes +inf). */
+static float float_down(double x)
+{
+    if (!(x >= -(double)FLT_MAX)) /* also NaN: widen to the whole line */
+        return -INFINITY;
+    if (x > (double)FLT_MAX)
+        return FLT_MAX;
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+/* The smallest float >= x. */
+static float float_up(double x)
+{
+    if (!(x <= (double)FLT_MAX))
+        return INFINITY;
+    if (x < -(double)FLT_MAX)
+        return -FLT_MAX;
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* Fills p from one sphere. c - r and c + r are rounded to nearest, so the
+ * exact value lies strictly between their neighbours: stepping one double
+ * outward before rounding to float makes the box contain the exact
+ * sphere. |r| because the shader only sees r^2. */
+static void prim_init(struct prim *p, const double s[4], uint32_t index)
+{
+    double r = fabs(s[3]);
+    for (int a = 0; a < 3; a++) {
+        p->lo[a] = float_down(nextafter(s[a] - r, -INFINITY));
+        p->hi[a] = float_up(nextafter(s[a] + r, INFINITY));
+        p->c[a] = s[a];
+    }
+    p->index = index;
+    p->bin = 0;
+}
+
+static void box_empty(float lo[3], float hi[3])
+{
+    for (int a = 0; a < 3; a++) {
+        lo[a] = INFINITY;
+        hi[a] = -INFINITY;
+    }
+}
+
+static void box_grow(float lo[3], float hi[3], const float plo[3],
+                     const float phi[3])
+{
+    /* Conditional moves, not branches: this is the builder's inner loop. */
+    for (int a = 0; a < 3; a++) {
+        lo[a] = plo[a] < lo[a] ? plo[a] : lo[a];
+        hi[a] = phi[a] > hi[a] ? phi[a] : hi[a];
+    }
+}
+
+/* Half the surface area, which is all SAH ratios need; in double so that
+ * boxes near float range do not overflow. */
+static double box_half_area(const float lo[3], const float hi[3])
+{
+    double d[3];
+    for (int a = 0; a < 3; a++)
+        d[a] = (double)hi[a] - (double)lo[a];
+    return d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+}
+
+/* The bin of centroid coordinate c in [cmin, cmin + extent]; NaN goes to
+ * bin 0 so that every sphere lands somewhere. */
+static int bin_of(double c, double cmin, double extent)
+{
+    double f = (c - cmin) / extent * BVH_BINS;
+    if (f >= BVH_BINS - 1)
+        return BVH_BINS - 1;
+    return f > 0 ? (int)f : 0;
+}
+
+/* Orders prims by center on axis, then by input index: a total order, so
+ * any selection by it gives the same halves. */
+static bool prim_less(const struct prim *x, const struct prim *y, int axis)
+{
+    if (x->c[axis] != y->c[axis])
+        return x->c[axis] < y->c[axis];
+    return x->index < y->index;
+}
+
+static void prim_swap(struct prim *x, struct prim *y)
+{
+    struct prim t = *x;
+    *x = *y;
+    *y = t;
+}
+
+static void sift_down(struct prim *p, size_t root, size_t n, int axis)
+{
+    for (;;) {
+        size_t child = 2 * root + 1;
+        if (child >= n)
+            return;
+        if (child + 1 < n && prim_less(&p[child], &p[child + 1], axis))
+            child++;
+        if (!prim_less(&p[root], &p[child], axis))
+            return;
+        prim_swap(&p[root], &p[child]);
+        root = child;
+    }
+}
+
+/* Heap sort: the worst-case bound quickselect lacks. */
+static void prim_heap_sort(struct prim *p, size_t n, int axis)
+{
+    for (size_t i = n / 2; i-- > 0;)
+        sift_down(p, i, n, axis);
+    for (size_t end = n; end-- > 1;) {
+        prim_swap(&p[0], &p[end]);
+        sift_down(p, 0, end, axis);
+    }
+}
+
+/* Rearranges p[0, n) so that p[k] is where sorting would put it, smaller
+ * ones before, larger after. Quickselect with a median-of-three pivot,
+ * falling back to heap sort after too many rounds (adversarial input). */
+static void prim_select(struct prim *p, size_t n, size_t k, int axis)
+{
+    size_t lo = 0, hi = n; /* the answer lies in [lo, hi) */
+    int rounds = 0;
+    while (hi - lo > 2) {
+        if (++rounds > 64) {
+            prim_heap_sort(p + lo, hi - lo, axis);
+            return;
+        }
+        size_t mid = lo + (hi - lo) / 2;
+        /* Sort p[lo], p[mid], p[hi - 1]; the median becomes the pivot. */
+        if (prim_less(&p[mid], &p[lo], axis))
+            prim_swap(&p[mid], &p[lo]);
+        if (prim_less(&p[hi - 1], &p[mid], axis))
+            prim_swap(&p[hi - 1], &p[mid]);
+        if (prim_less(&p[mid], &p[lo], axis))
+            prim_swap(&p[mid], &p[lo]);
+        prim_swap(&p[mid], &p[hi - 1]);
+        struct prim *pivot = &p[hi - 1];
+        size_t store = lo;
+        for (size_t i = lo; i < hi - 1; i++)
+            if (prim_less(&p[i], pivot, axis))
+                prim_swap(&p[i], &p[store++]);
+        prim_swap(&p[store], &p[hi - 1]);
+        /* Keys are distinct, so the pivot now sits at its sorted place. */
+        if (store == k)
+            return;
+        if (k < store)
+            hi = store;
+        else
+            lo = store + 1;
+    }
+    if (hi - lo == 2 && prim_less(&p[lo + 1], &p[lo], axis))
+        prim_swap(&p[lo], &p[lo + 1]);
+}
+
+/* Moves prims whose bin is <= split before the others; returns how many. */
+static uint32_t partition_bins(struct prim *p, uint32_t n, int split)
+{
+    uint32_t i = 0, j = n;
+    while (i < j) {
+        if (p[i].bin <= split) {
+            i++;
+        } else {
+            j--;
+            prim_swap(&p[i], &p[j]);
+        }
+    }
+    return i;
+}
+
+/* How many spheres a subtree with `levels` levels below its root can hold
+ * with leaves of at most BVH_MAX_LEAF: median splits achieve it. */
+static uint64_t capacity(int levels)
+{
+    return (uint64_t)BVH_MAX_LEAF << levels;
+}
+
+/* Grows the centroid bounds cmin, cmax by c. */
+static void centroid_grow(double cmin[3], double cmax[3], const double c[3])
+{
+    for (int a = 0; a < 3; a++) {
+        cmin[a] = c[a] < cmin[a] ? c[a] : cmin[a];
+        cmax[a] = c[a] > cmax[a] ? c[a] : cmax[a];
+    }
+}
+
+static void centroid_empty(double cmin[3], double cmax[3])
+{
+    for (int a = 0; a < 3; a++) {
+        cmin[a] = INFINITY;
+        cmax[a] = -INFINITY;
+    }
+}
+
+/* t's centroid bounds, by a pass over its spheres (the root, and the
+ * halves of a median split, which bins do not describe). */
+static void task_centroids(const struct prim *prims, struct task *t)
+{
+    centroid_empty(t->cmin, t->cmax);
+    for (uint32_t i = t->begin; i < t->end; i++)
+        centroid_grow(t->cmin, t->cmax, prims[i].c);
+}
+
+/* Makes node a leaf over t's spheres, bounds by a pass over them. */
+static void make_leaf(const struct prim *prims, const struct task *t,
+                      struct bvh_node *node)
+{
+    box_empty(node->lo, node->hi);
+    for (uint32_t i = t->begin; i < t->end; i++)
+        box_grow(node->lo, node->hi, prims[i].lo, prims[i].hi);
+    node->first = (int32_t)t->begin;
+    node->count = (int32_t)(t->end - t->begin);
+}
+
+/* Decides node t. Either makes it a leaf (returns 0), or fills its bounds,
+ * partitions its spheres and sets the two children's ranges and centroid
+ * bounds in kids (returns 1). The binning pass also gathers the bounds, so
+ * an inner node costs two passes over its spheres. */
+static int split_node(struct prim *prims, const struct task *t,
+                      struct bvh_node *node, struct task kids[2])
+{
+    struct prim *p = prims + t->begin;
+    uint32_t n = t->end - t->begin;
+    int axis = 0;
+    double extent[3];
+    for (int a = 0; a < 3; a++) {
+        extent[a] = t->cmax[a] - t->cmin[a];
+        if (extent[a] > extent[axis])
+            axis = a;
+    }
+    int levels_left = BVH_MAX_NODE_DEPTH - (int)t->depth;
+    /* !(extent > 0): all centers equal, or none comparable (NaN). */
+    if (n <= BVH_MIN_SPLIT || levels_left == 0 || !(extent[axis] > 0)) {
+        make_leaf(prims, t, node);
+        return 0;
+    }
+
+    struct bin bins[BVH_BINS];
+    for (int b = 0; b < BVH_BINS; b++) {
+        bins[b].count = 0;
+        box_empty(bins[b].lo, bins[b].hi);
+        centroid_empty(bins[b].cmin, bins[b].cmax);
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        int b = bin_of(p[i].c[axis], t->cmin[axis], extent[axis]);
+        p[i].bin = (uint8_t)b;
+        bins[b].count++;
+        box_grow(bins[b].lo, bins[b].hi, p[i].lo, p[i].hi);
+        centroid_grow(bins[b].cmin, bins[b].cmax, p[i].c);
+    }
+
+    /* right_area[b], right_count[b]: bins b .. BVH_BINS - 1 together. */
+    double right_area[BVH_BINS];
+    uint32_t right_count[BVH_BINS];
+    float rlo[3], rhi[3];
+    box_empty(rlo, rhi);
+    uint32_t rn = 0;
+    double ra = 0;
+    for (int b = BVH_BINS - 1; b > 0; b--) {
+        if (bins[b].count) { /* empty bins change nothing: skip the area */
+            box_grow(rlo, rhi, bins[b].lo, bins[b].hi);
+            rn += bins[b].count;
+            ra = box_half_area(rlo, rhi);
+        }
+        right_count[b] = rn;
+        right_area[b] = ra;
+    }
+    /* Split after bin `best`: the first of equal costs, for determinism.
+     * A split after an empty bin repeats the one before it, so only
+     * non-empty bins are tried. The sweep ends with the node's own bounds
+     * in lo, hi. */
+    int best = -1;
+    double best_cost = INFINITY;
+    uint32_t best_left = 0;
+    float lo[3], hi[3];
+    box_empty(lo, hi);
+    uint32_t ln = 0;
+    for (int b = 0; b < BVH_BINS; b++) {
+        if (bins[b].count == 0)
+            continue;
+        box_grow(lo, hi, bins[b].lo, bins[b].hi);
+        ln += bins[b].count;
+        if (b == BVH_BINS - 1 || right_count[b + 1] == 0)
+            continue;
+        double cost = box_half_area(lo, hi) * ln +
+                      right_area[b + 1] * right_count[b + 1];
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = b;
+            best_left = ln;
+        }
+    }
+    memcpy(node->lo, lo, sizeof lo);
+    memcpy(node->hi, hi, sizeof hi);
+    node->first = (int32_t)t->begin;
+    node->count = (int32_t)n;
+
+    double area = box_half_area(lo, hi);
+    double split_cost = BVH_TRAVERSAL_COST * area + best_cost;
+    double leaf_cost = (double)n * area;
+    if (n <= BVH_MAX_LEAF && !(split_cost < leaf_cost))
+        return 0;
+
+    /* A SAH split whose larger side would not fit the levels left (or no
+     * usable plane, from rounding in bin_of) becomes a median split, which
+     * halves n and so always fits: n <= capacity(levels_left) holds at
+     * the root and is passed down. */
+    uint32_t larger = best_left > n - best_left ? best_left : n - best_left;
+    uint32_t mid;
+    if (best < 0 || larger > capacity(levels_left - 1)) {
+        mid = n / 2;
+        prim_select(p, n, mid, axis);
+        kids[0].begin = t->begin;
+        kids[0].end = kids[1].begin = t->begin + mid;
+        kids[1].end = t->end;
+        task_centroids(prims, &kids[0]);
+        task_centroids(prims, &kids[1]);
+        return 1;
+    }
+    mid = partition_bins(p, n, best);
+    kids[0].begin = t->begin;
+    kids[0].end = kids[1].begin = t->begin + mid;
+    kids[1].end = t->end;
+    for (int k = 0; k < 2; k++)
+        centroid_empty(kids[k].cmin, kids[k].cmax);
+    for (int b = 0; b < BVH_BINS; b++) {
+        struct task *k = &kids[b > best];
+        if (bins[b].count) {
+            centroid_grow(k->cmin, k->cmax, bins[b].cmin);
+            centroid_grow(k->cmin, k->cmax, bins[b].cmax);
+        }
+    }
+    return 1;
+}
+
+int bvh_build(const double (*spheres)[4], size_t n, struct bvh *b)
+{
+    memset(b, 0, sizeof *b);
+    if (n == 0)
+        return 0;
+    if (n > BVH_MAX_SPHERES)
+        return -1;
+
+    size_t max_nodes = 2 * n - 1;
+    struct prim *prims = malloc(n * sizeof *prims);
+    b->nodes = malloc(max_nodes * sizeof *b->nodes);
+    b->order = malloc(n * sizeof *b->order);
+    if (!prims || !b->nodes || !b->order) {
+        free(prims);
+        bvh_free(b);
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++)
+        prim_init(&prims[i], spheres[i], (uint32_t)i);
+
+    /* Depth-first with an explicit stack, left child first, so subtrees
+     * sit together in nodes[]. A task at depth d finds at most d right
+     * siblings of its ancestors waiting, and pushes two only when
+     * d < BVH_MAX_NODE_DEPTH, so the stack never exceeds
+     * TP2_BVH_MAX_DEPTH. */
+    struct task stack[TP2_BVH_MAX_DEPTH];
+    int sp = 0;
+    stack[sp] = (struct task){.node = 0, .begin = 0, .end = (uint32_t)n};
+    task_centroids(prims, &stack[sp++]);
+    size_t node_count = 1;
+    while (sp > 0) {
+        struct task t = stack[--sp];
+        struct bvh_node *node = &b->nodes[t.node];
+        struct task kids[2];
+        if (!split_node(prims, &t, node, kids))
+            continue;
+        uint32_t left = (uint32_t)node_count;
+        node_count += 2;
+        node->first = (int32_t)left;
+        node->count = 0;
+        for (int k = 1; k >= 0; k--) {
+            kids[k].node = left + (uint32_t)k;
+            kids[k].depth = t.depth + 1;
+            stack[sp++] = kids[k];
+        }
+    }
+
+    for (size_t i = 0; i < n; i++)
+        b->order[i] = prims[i].index;
+    free(prims);
+    b->node_count = node_count;
+    /* Give back the unused tail; keeping the larger block is harmless. */
+    struct bvh_node *shrunk = realloc(b->nodes, node_count * sizeof *shrunk);
+    if (shrunk)
+        b->nodes = shrunk;
+    return 0;
+}
+
+void bvh_free(struct bvh *b)
+{
+    free(b->nodes);
+    free(b->order);
+    memset(b, 0, sizeof *b);
+}

@@ -1,0 +1,56 @@
+/* bvh.h: a bounding volume hierarchy over spheres, laid out for the shader.
+ *
+ * Depth invariant: every node's depth (root = 0) is at most
+ * TP2_BVH_MAX_DEPTH - 1. An ordered traversal that keeps the far child on a
+ * stack and descends into the near one holds at most depth(leaf) <=
+ * TP2_BVH_MAX_DEPTH - 1 entries (one far sibling per ancestor level), and
+ * one that pushes the root first or pushes both children before popping
+ * one still peaks at TP2_BVH_MAX_DEPTH, so a stack of TP2_BVH_MAX_DEPTH
+ * entries never overflows. */
+#ifndef TP2_BVH_H
+#define TP2_BVH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* The shader's traversal stack holds this many node indices. */
+#define TP2_BVH_MAX_DEPTH 32
+
+/* One node as the shader reads it (std430: vec3 lo; int first; vec3 hi;
+ * int count). Bounds are floats rounded outward from the spheres' exact
+ * boxes, so a float slab test on them never misses a sphere. */
+struct bvh_node {
+    float lo[3];
+    int32_t first; /* inner: left child (right = first + 1); leaf: first slot */
+    float hi[3];
+    int32_t count; /* 0: inner node; > 0: leaf over slots [first, first + count) */
+};
+
+_Static_assert(sizeof(struct bvh_node) == 32, "bvh_node is 32 bytes");
+_Static_assert(offsetof(struct bvh_node, lo) == 0, "bvh_node.lo at 0");
+_Static_assert(offsetof(struct bvh_node, first) == 12, "bvh_node.first at 12");
+_Static_assert(offsetof(struct bvh_node, hi) == 16, "bvh_node.hi at 16");
+_Static_assert(offsetof(struct bvh_node, count) == 28, "bvh_node.count at 28");
+
+struct bvh {
+    struct bvh_node *nodes; /* nodes[0] is the root; NULL when n == 0 */
+    size_t node_count;      /* at most 2 n - 1 */
+    uint32_t *order; /* order[slot] = input sphere in that slot; a permutation */
+};
+
+/* Builds a BVH over n spheres given as (cx, cy, cz, r), r >= 0, with binned
+ * SAH (16 bins on the longest axis of the centroid bounds). A node becomes
+ * a leaf when it holds <= 2 spheres, or <= 8 and splitting costs no less
+ * than intersecting them all; a leaf holds more than 8 only when all its
+ * centers are equal. Near the depth limit, splits that would not fit in the
+ * levels left become median splits, so leaves stay small there too. The
+ * same input always gives the same tree. Coordinates beyond float range
+ * give infinite bounds; NaN gives an infinite box. Returns 0, or -1 when
+ * out of memory or n > 2^30 (node indices must fit int32); b is zeroed on
+ * failure and when n == 0. */
+int bvh_build(const double (*spheres)[4], size_t n, struct bvh *b);
+
+/* Frees the arrays and zeroes b; safe on a zeroed one. */
+void bvh_free(struct bvh *b);
+
+#endif

@@ -1,0 +1,582 @@
+/* test_layout.c: the GLSL structs match the C structs, read from the SPIR-V.
+ *
+ * Walks the word stream of both embedded shaders (float and double) and,
+ * for every storage buffer of shaders/layout.glsl, checks: the variable
+ * exists (a buffer the optimiser dropped is a failure), its Binding equals
+ * TP2_BINDING_* and its DescriptorSet 0, the runtime array's ArrayStride
+ * equals sizeof the C struct, and each member of the GLSL struct has the
+ * C field's name, offset, size and scalar type, with as many members as the
+ * C table has fields. The storage buffers' bindings must be exactly
+ * 0 .. TP2_BINDING_COUNT - 1, so a buffer added on one side only shows up.
+ * Prints "N passed, M failed" last; exits 0 only when nothing failed. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "gpu_layout.h"
+#include "tp2_shared.h"
+
+/* The generated headers define the arrays with external linkage, as does
+ * render.c; rename ours so the two can never clash at link time. */
+#define tp2_trace_float test_spv_float
+#define tp2_trace_double test_spv_double
+#include "trace_double_spv.h"
+#include "trace_float_spv.h"
+#undef tp2_trace_float
+#undef tp2_trace_double
+
+/* SPIR-V opcodes, decorations and storage classes used here (SPIR-V 1.x
+ * specification, sections 3.32, 3.20 and 3.7). */
+enum {
+    OP_NAME = 5,
+    OP_MEMBER_NAME = 6,
+    OP_TYPE_INT = 21,
+    OP_TYPE_FLOAT = 22,
+    OP_TYPE_VECTOR = 23,
+    OP_TYPE_ARRAY = 28,
+    OP_TYPE_RUNTIME_ARRAY = 29,
+    OP_TYPE_STRUCT = 30,
+    OP_TYPE_POINTER = 32,
+    OP_CONSTANT = 43,
+    OP_VARIABLE = 59,
+    OP_DECORATE = 71,
+    OP_MEMBER_DECORATE = 72,
+    DEC_BLOCK = 2,
+    DEC_ARRAY_STRIDE = 6,
+    DEC_BINDING = 33,
+    DEC_DESCRIPTOR_SET = 34,
+    DEC_OFFSET = 35,
+    SC_STORAGE_BUFFER = 12,
+    SPV_MAGIC = 0x07230203,
+};
+
+static int passed, failed;
+
+/* Records one check; on failure prints FAIL with the shader and what. */
+static void check(int ok, const char *shader, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static void check(int ok, const char *shader, const char *fmt, ...)
+{
+    if (ok) {
+        passed++;
+        return;
+    }
+    failed++;
+    va_list ap;
+    va_start(ap, fmt);
+    printf("FAIL %s: ", shader);
+    vprintf(fmt, ap);
+    putchar('\n');
+    va_end(ap);
+}
+
+/* One SPIR-V module: its words, checked once so every walk below may
+ * trust the word counts. */
+struct spv {
+    const char *label; /* "float" or "double", for messages */
+    const uint32_t *w;
+    size_t n;
+};
+
+/* Checks the header and that the instructions tile the module exactly.
+ * Returns 0, or -1 (reported) when it is malformed. */
+static int spv_validate(const struct spv *m)
+{
+    if (m->n < 5 || m->w[0] != SPV_MAGIC) {
+        check(0, m->label, "not a SPIR-V module (magic 0x%08x)",
+              m->n ? (unsigned)m->w[0] : 0u);
+        return -1;
+    }
+    size_t i = 5;
+    while (i < m->n) {
+        uint32_t wc = m->w[i] >> 16;
+        if (wc == 0 || wc > m->n - i) {
+            check(0, m->label, "bad word count %u at word %zu", (unsigned)wc, i);
+            return -1;
+        }
+        i += wc;
+    }
+    check(1, m->label, "module well formed");
+    return 0;
+}
+
+/* Instruction walk: for (i = 5; i < n; i += wc) with op and wc decoded. */
+#define SPV_FOR(m, i, op, wc)                                                \
+    for (size_t i = 5, wc = 0, op = 0;                                       \
+         i < (m)->n && ((wc = (m)->w[i] >> 16), (op = (m)->w[i] & 0xffff), 1); \
+         i += wc)
+
+/* Compares the literal string at words [at, end) with s. */
+static int spv_str_eq(const struct spv *m, size_t at, size_t end, const char *s)
+{
+    size_t k = 0;
+    for (size_t i = at; i < end; i++) {
+        for (int b = 0; b < 4; b++) {
+            char c = (char)((m->w[i] >> (8 * b)) & 0xff);
+            if (c != s[k])
+                return 0;
+            if (c == '\0')
+                return 1;
+            k++;
+        }
+    }
+    return 0; /* unterminated */
+}
+
+/* Copies the literal string at words [at, end) into buf (truncated). */
+static void spv_str_copy(const struct spv *m, size_t at, size_t end, char *buf,
+                         size_t size)
+{
+    size_t k = 0;
+    for (size_t i = at; i < end && k + 1 < size; i++) {
+        for (int b = 0; b < 4 && k + 1 < size; b++) {
+            char c = (char)((m->w[i] >> (8 * b)) & 0xff);
+            if (c == '\0')
+                goto done;
+            buf[k++] = c;
+        }
+    }
+done:
+    buf[k] = '\0';
+}
+
+/* Word index of the instruction that defines id as a type, constant or
+ * variable, or 0 if none does. */
+static size_t spv_def(const struct spv *m, uint32_t id)
+{
+    SPV_FOR(m, i, op, wc) {
+        if (op >= OP_TYPE_INT && op <= OP_TYPE_POINTER && wc >= 2 &&
+            m->w[i + 1] == id)
+            return i;
+        if ((op == OP_VARIABLE || op == OP_CONSTANT) && wc >= 4 &&
+            m->w[i + 2] == id)
+            return i;
+    }
+    return 0;
+}
+
+/* Opcode of the instruction at word i (0 stands for "none"). */
+static uint32_t spv_op(const struct spv *m, size_t i)
+{
+    return i ? m->w[i] & 0xffff : 0;
+}
+
+static uint32_t spv_wc(const struct spv *m, size_t i)
+{
+    return i ? m->w[i] >> 16 : 0;
+}
+
+/* Whether id has OpName name. */
+static int spv_named(const struct spv *m, uint32_t id, const char *name)
+{
+    SPV_FOR(m, i, op, wc)
+        if (op == OP_NAME && wc >= 3 && m->w[i + 1] == id &&
+            spv_str_eq(m, i + 2, i + wc, name))
+            return 1;
+    return 0;
+}
+
+/* OpMemberName of member k of struct id into buf; "" if none. */
+static void spv_member_name(const struct spv *m, uint32_t id, uint32_t k,
+                            char *buf, size_t size)
+{
+    buf[0] = '\0';
+    SPV_FOR(m, i, op, wc)
+        if (op == OP_MEMBER_NAME && wc >= 4 && m->w[i + 1] == id &&
+            m->w[i + 2] == k) {
+            spv_str_copy(m, i + 3, i + wc, buf, size);
+            return;
+        }
+}
+
+/* Literal of decoration dec on id, or -1 if absent; 1 for a decoration
+ * without a literal (Block). */
+static long spv_decoration(const struct spv *m, uint32_t id, uint32_t dec)
+{
+    SPV_FOR(m, i, op, wc)
+        if (op == OP_DECORATE && wc >= 3 && m->w[i + 1] == id &&
+            m->w[i + 2] == dec)
+            return wc >= 4 ? (long)m->w[i + 3] : 1;
+    return -1;
+}
+
+/* Literal of member decoration dec on member k of id, or -1 if absent. */
+static long spv_member_decoration(const struct spv *m, uint32_t id, uint32_t k,
+                                  uint32_t dec)
+{
+    SPV_FOR(m, i, op, wc)
+        if (op == OP_MEMBER_DECORATE && wc >= 5 && m->w[i + 1] == id &&
+            m->w[i + 2] == k && m->w[i + 3] == dec)
+            return (long)m->w[i + 4];
+    return -1;
+}
+
+/* The storage-buffer variable whose block type is named block, through
+ * its pointer type; 0 if none. *count gets how many there are. */
+static uint32_t spv_find_buffer(const struct spv *m, const char *block,
+                                uint32_t *block_type, int *count)
+{
+    uint32_t found = 0;
+    *count = 0;
+    SPV_FOR(m, i, op, wc) {
+        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != SC_STORAGE_BUFFER)
+            continue;
+        size_t ptr = spv_def(m, m->w[i + 1]);
+        if (spv_op(m, ptr) != OP_TYPE_POINTER || spv_wc(m, ptr) < 4)
+            continue;
+        uint32_t type = m->w[ptr + 3];
+        if (spv_named(m, type, block)) {
+            found = m->w[i + 2];
+            *block_type = type;
+            ++*count;
+        }
+    }
+    return found;
+}
+
+/* Scalar kinds a C field's elements may have. */
+enum kind {
+    KIND_F32 = 'f',
+    KIND_F64 = 'd',
+    KIND_I32 = 'i',
+    KIND_U32 = 'u',
+    KIND_OTHER = '?',
+};
+
+/* Element kind of a C field, array or scalar: `+ 0` decays an array to a
+ * pointer to its elements and leaves a scalar's type as it is. */
+#define KIND_OF(x)                                                          \
+    _Generic((x) + 0, float: KIND_F32, float *: KIND_F32,                   \
+             double: KIND_F64, double *: KIND_F64, int32_t: KIND_I32,       \
+             int32_t *: KIND_I32, uint32_t: KIND_U32, uint32_t *: KIND_U32, \
+             default: KIND_OTHER)
+
+/* Size in bytes and scalar kind of a scalar or vector type; 0 if it is
+ * neither. */
+static size_t spv_type_size(const struct spv *m, uint32_t type, enum kind *kind)
+{
+    size_t s = spv_def(m, type);
+    size_t n = 1;
+    if (spv_op(m, s) == OP_TYPE_VECTOR && spv_wc(m, s) >= 4) {
+        n = m->w[s + 3];
+        s = spv_def(m, m->w[s + 2]);
+    }
+    uint32_t op = spv_op(m, s);
+    if (op == OP_TYPE_FLOAT && spv_wc(m, s) >= 3) {
+        uint32_t width = m->w[s + 2];
+        *kind = width == 32 ? KIND_F32 : width == 64 ? KIND_F64 : KIND_OTHER;
+        return n * width / 8;
+    }
+    if (op == OP_TYPE_INT && spv_wc(m, s) >= 4) {
+        uint32_t width = m->w[s + 2];
+        *kind = width != 32 ? KIND_OTHER : m->w[s + 3] ? KIND_I32 : KIND_U32;
+        return n * width / 8;
+    }
+    return 0;
+}
+
+/* One C field: name, offset, size, scalar kind. */
+struct field {
+    const char *name;
+    size_t offset, size;
+    enum kind kind;
+};
+
+/* One storage buffer of layout.glsl and the C struct of its element. */
+struct buffer {
+    const char *block;  /* GLSL block name: FrameBuf */
+    const char *glsl;   /* GLSL struct name: Frame */
+    const char *c;      /* C struct name, for messages */
+    long binding;       /* TP2_BINDING_* */
+    int array;          /* 1: block holds a runtime array of the struct */
+    size_t size, align; /* sizeof and _Alignof the C struct */
+    const struct field *fields;
+    size_t nfields;
+};
+
+#define FIELD(T, f)                                                           \
+    {#f, offsetof(struct T, f), sizeof(((struct T *)0)->f),                   \
+     KIND_OF(((struct T *)0)->f)},
+
+/* Field lists, in declaration order, of gpu_layout_types.h. */
+#define FRAME_FIELDS(F, T) F(T, eye) F(T, u) F(T, v) F(T, w) F(T, ambient) \
+    F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, counts)           \
+    F(T, geometry) F(T, sampling)
+#define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
+#define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, params) F(T, kind)
+#define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
+#define OBJECT_FIELDS(F, T) F(T, geom) F(T, ids)
+#define BVH_FIELDS(F, T) F(T, lo) F(T, first) F(T, hi) F(T, count)
+
+#define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
+FIELDS(FRAME_FIELDS, gpu_frame_f)
+FIELDS(LIGHT_FIELDS, gpu_light_f)
+FIELDS(PIGMENT_FIELDS, gpu_pigment_f)
+FIELDS(FINISH_FIELDS, gpu_finish_f)
+FIELDS(OBJECT_FIELDS, gpu_object_f)
+FIELDS(FRAME_FIELDS, gpu_frame_d)
+FIELDS(LIGHT_FIELDS, gpu_light_d)
+FIELDS(PIGMENT_FIELDS, gpu_pigment_d)
+FIELDS(FINISH_FIELDS, gpu_finish_d)
+FIELDS(OBJECT_FIELDS, gpu_object_d)
+FIELDS(BVH_FIELDS, bvh_node) /* float bounds in both shaders */
+
+#define BUFFER(block, glsl, T, binding, array)                                \
+    {block, glsl, #T, binding, array, sizeof(struct T), _Alignof(struct T),   \
+     T##_fields, sizeof T##_fields / sizeof T##_fields[0]}
+
+static const struct buffer float_buffers[] = {
+    BUFFER("FrameBuf", "Frame", gpu_frame_f, TP2_BINDING_FRAME, 0),
+    BUFFER("LightBuf", "Light", gpu_light_f, TP2_BINDING_LIGHTS, 1),
+    BUFFER("PigmentBuf", "Pigment", gpu_pigment_f, TP2_BINDING_PIGMENTS, 1),
+    BUFFER("FinishBuf", "Finish", gpu_finish_f, TP2_BINDING_FINISHES, 1),
+    BUFFER("ObjectBuf", "Object", gpu_object_f, TP2_BINDING_OBJECTS, 1),
+    BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+};
+
+static const struct buffer double_buffers[] = {
+    BUFFER("FrameBuf", "Frame", gpu_frame_d, TP2_BINDING_FRAME, 0),
+    BUFFER("LightBuf", "Light", gpu_light_d, TP2_BINDING_LIGHTS, 1),
+    BUFFER("PigmentBuf", "Pigment", gpu_pigment_d, TP2_BINDING_PIGMENTS, 1),
+    BUFFER("FinishBuf", "Finish", gpu_finish_d, TP2_BINDING_FINISHES, 1),
+    BUFFER("ObjectBuf", "Object", gpu_object_d, TP2_BINDING_OBJECTS, 1),
+    BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+};
+
+/* The C table itself covers the struct: fields in order, not overlapping,
+ * the last one ending where sizeof (rounded to the alignment) says, so a
+ * field added to C but not to the table (or to GLSL) shows up. */
+static void check_c_table(const char *label, const struct buffer *b)
+{
+    size_t end = 0;
+    int ordered = 1;
+    for (size_t k = 0; k < b->nfields; k++) {
+        ordered &= b->fields[k].offset >= end;
+        end = b->fields[k].offset + b->fields[k].size;
+    }
+    size_t rounded = (end + b->align - 1) / b->align * b->align;
+    check(ordered && rounded == b->size, label,
+          "struct %s: table fields in order and cover sizeof %zu (end %zu)",
+          b->c, b->size, end);
+}
+
+/* Checks struct id (GLSL b->glsl) member by member against b's C fields. */
+static void check_struct(const struct spv *m, uint32_t id,
+                         const struct buffer *b)
+{
+    size_t def = spv_def(m, id);
+    check(spv_op(m, def) == OP_TYPE_STRUCT, m->label,
+          "%s: element of %s is a struct", b->glsl, b->block);
+    if (spv_op(m, def) != OP_TYPE_STRUCT)
+        return;
+    check(spv_named(m, id, b->glsl), m->label, "%s: element of %s is named %s",
+          b->glsl, b->block, b->glsl);
+    size_t members = spv_wc(m, def) - 2;
+    check(members == b->nfields, m->label,
+          "%s: %zu members in SPIR-V, %zu fields in struct %s", b->glsl,
+          members, b->nfields, b->c);
+    for (size_t k = 0; k < members && k < b->nfields; k++) {
+        const struct field *f = &b->fields[k];
+        char name[64];
+        spv_member_name(m, id, (uint32_t)k, name, sizeof name);
+        check(strcmp(name, f->name) == 0, m->label,
+              "%s member %zu is '%s', C field is '%s'", b->glsl, k, name,
+              f->name);
+        long off = spv_member_decoration(m, id, (uint32_t)k, DEC_OFFSET);
+        check(off >= 0 && (size_t)off == f->offset, m->label,
+              "%s.%s: Offset %ld, offsetof(struct %s, %s) %zu", b->glsl, name,
+              off, b->c, f->name, f->offset);
+        enum kind kind = KIND_OTHER;
+        size_t size = spv_type_size(m, m->w[def + 2 + k], &kind);
+        check(size == f->size && kind == f->kind, m->label,
+              "%s.%s: %zu bytes of kind '%c'; C field %zu bytes of kind '%c'",
+              b->glsl, name, size, kind, f->size, f->kind);
+    }
+}
+
+/* Checks one buffer: variable, binding, set, block, array stride, struct. */
+static void check_buffer(const struct spv *m, const struct buffer *b)
+{
+    uint32_t block = 0;
+    int count = 0;
+    uint32_t var = spv_find_buffer(m, b->block, &block, &count);
+    check(count == 1, m->label,
+          "buffer %s: %d storage-buffer variables (optimised away?), want 1",
+          b->block, count);
+    if (count != 1)
+        return;
+    long binding = spv_decoration(m, var, DEC_BINDING);
+    check(binding == b->binding, m->label, "buffer %s: Binding %ld, want %ld",
+          b->block, binding, b->binding);
+    long set = spv_decoration(m, var, DEC_DESCRIPTOR_SET);
+    check(set == 0, m->label, "buffer %s: DescriptorSet %ld, want 0",
+          b->block, set);
+    check(spv_decoration(m, block, DEC_BLOCK) == 1, m->label,
+          "buffer %s: decorated Block", b->block);
+
+    size_t def = spv_def(m, block);
+    int ok = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3;
+    check(ok, m->label, "buffer %s: a block of exactly one member", b->block);
+    if (!ok)
+        return;
+    check(spv_member_decoration(m, block, 0, DEC_OFFSET) == 0, m->label,
+          "buffer %s: member at Offset 0", b->block);
+    uint32_t member = m->w[def + 2];
+    if (!b->array) {
+        check_struct(m, member, b);
+        return;
+    }
+    size_t arr = spv_def(m, member);
+    ok = spv_op(m, arr) == OP_TYPE_RUNTIME_ARRAY && spv_wc(m, arr) >= 3;
+    check(ok, m->label, "buffer %s: member is a runtime array", b->block);
+    if (!ok)
+        return;
+    long stride = spv_decoration(m, member, DEC_ARRAY_STRIDE);
+    check(stride >= 0 && (size_t)stride == b->size, m->label,
+          "%s[]: ArrayStride %ld, sizeof(struct %s) %zu", b->glsl, stride,
+          b->c, b->size);
+    check_struct(m, m->w[arr + 2], b);
+}
+
+/* The image buffer: a runtime array of vec4 (the host reads 4 floats per
+ * pixel, image_write's rgba) at TP2_BINDING_IMAGE. */
+static void check_image(const struct spv *m)
+{
+    uint32_t block = 0;
+    int count = 0;
+    uint32_t var = spv_find_buffer(m, "ImageBuf", &block, &count);
+    check(count == 1, m->label, "buffer ImageBuf: %d variables, want 1", count);
+    if (count != 1)
+        return;
+    long binding = spv_decoration(m, var, DEC_BINDING);
+    check(binding == TP2_BINDING_IMAGE, m->label,
+          "buffer ImageBuf: Binding %ld, want %d", binding, TP2_BINDING_IMAGE);
+    check(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, m->label,
+          "buffer ImageBuf: DescriptorSet 0");
+    size_t def = spv_def(m, block);
+    size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3
+                     ? spv_def(m, m->w[def + 2])
+                     : 0;
+    int ok = spv_op(m, arr) == OP_TYPE_RUNTIME_ARRAY && spv_wc(m, arr) >= 3;
+    check(ok, m->label, "buffer ImageBuf: one runtime array member");
+    if (!ok)
+        return;
+    enum kind kind = KIND_OTHER;
+    size_t size = spv_type_size(m, m->w[arr + 2], &kind);
+    check(size == 4 * sizeof(float) && kind == KIND_F32, m->label,
+          "pixels[]: element is vec4");
+    long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
+    check(stride == (long)(4 * sizeof(float)), m->label,
+          "pixels[]: ArrayStride %ld, want %zu", stride, 4 * sizeof(float));
+}
+
+/* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT] at
+ * TP2_BINDING_STATS, read by render.c as that many uint32_t. */
+static void check_stats(const struct spv *m)
+{
+    uint32_t block = 0;
+    int count = 0;
+    uint32_t var = spv_find_buffer(m, "StatsBuf", &block, &count);
+    check(count == 1, m->label, "buffer StatsBuf: %d variables, want 1", count);
+    if (count != 1)
+        return;
+    long binding = spv_decoration(m, var, DEC_BINDING);
+    check(binding == TP2_BINDING_STATS, m->label,
+          "buffer StatsBuf: Binding %ld, want %d", binding, TP2_BINDING_STATS);
+    check(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, m->label,
+          "buffer StatsBuf: DescriptorSet 0");
+    size_t def = spv_def(m, block);
+    size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3
+                     ? spv_def(m, m->w[def + 2])
+                     : 0;
+    int ok = spv_op(m, arr) == OP_TYPE_ARRAY && spv_wc(m, arr) >= 4;
+    check(ok, m->label, "buffer StatsBuf: one fixed-size array member");
+    if (!ok)
+        return;
+    enum kind kind = KIND_OTHER;
+    size_t size = spv_type_size(m, m->w[arr + 2], &kind);
+    check(size == sizeof(uint32_t) && kind == KIND_U32, m->label,
+          "ray_counts[]: element is uint");
+    size_t len = spv_def(m, m->w[arr + 3]);
+    long n = spv_op(m, len) == OP_CONSTANT && spv_wc(m, len) >= 4
+                 ? (long)m->w[len + 3]
+                 : -1;
+    check(n == 2 * TP2_STAT_COUNT, m->label, "ray_counts[]: %ld elements, want %d",
+          n, 2 * TP2_STAT_COUNT);
+    long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
+    check(stride == (long)sizeof(uint32_t), m->label,
+          "ray_counts[]: ArrayStride %ld, want %zu", stride, sizeof(uint32_t));
+}
+
+/* Every storage buffer in the module: bindings exactly 0 .. COUNT - 1,
+ * each once, all in set 0, so one the tables above miss is noticed. */
+static void check_binding_set(const struct spv *m)
+{
+    int seen[TP2_BINDING_COUNT] = {0};
+    int stray = 0;
+    SPV_FOR(m, i, op, wc) {
+        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != SC_STORAGE_BUFFER)
+            continue;
+        long b = spv_decoration(m, m->w[i + 2], DEC_BINDING);
+        if (b >= 0 && b < TP2_BINDING_COUNT)
+            seen[b]++;
+        else
+            stray++;
+    }
+    int ok = stray == 0;
+    for (int b = 0; b < TP2_BINDING_COUNT; b++)
+        ok &= seen[b] == 1;
+    check(ok, m->label,
+          "storage buffers bound exactly once each at 0..%d (%d stray)",
+          TP2_BINDING_COUNT - 1, stray);
+}
+
+/* Bindings are distinct and below TP2_BINDING_COUNT, as the host's
+ * descriptor set layout assumes. */
+static void check_bindings(void)
+{
+    const long b[] = {TP2_BINDING_FRAME,    TP2_BINDING_LIGHTS,
+                      TP2_BINDING_PIGMENTS, TP2_BINDING_FINISHES,
+                      TP2_BINDING_OBJECTS,  TP2_BINDING_BVH,
+                      TP2_BINDING_IMAGE,    TP2_BINDING_STATS};
+    size_t n = sizeof b / sizeof b[0];
+    int ok = n == TP2_BINDING_COUNT;
+    for (size_t i = 0; i < n; i++) {
+        ok &= b[i] >= 0 && b[i] < TP2_BINDING_COUNT;
+        for (size_t j = 0; j < i; j++)
+            ok &= b[i] != b[j];
+    }
+    check(ok, "tp2_shared.h", "bindings distinct, 0..TP2_BINDING_COUNT-1");
+}
+
+static void check_module(const struct spv *m, const struct buffer *buffers,
+                         size_t n)
+{
+    if (spv_validate(m) != 0)
+        return;
+    for (size_t i = 0; i < n; i++) {
+        check_c_table(m->label, &buffers[i]);
+        check_buffer(m, &buffers[i]);
+    }
+    check_image(m);
+    check_stats(m);
+    check_binding_set(m);
+}
+
+int main(void)
+{
+    const struct spv f = {"float", test_spv_float,
+                          sizeof test_spv_float / sizeof test_spv_float[0]};
+    const struct spv d = {"double", test_spv_double,
+                          sizeof test_spv_double / sizeof test_spv_double[0]};
+    check_bindings();
+    check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0]);
+    check_module(&d, double_buffers,
+                 sizeof double_buffers / sizeof double_buffers[0]);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
