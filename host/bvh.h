@@ -1,12 +1,12 @@
 /* bvh.h: a bounding volume hierarchy over spheres, laid out for the shader.
  *
  * Depth invariant: every node's depth (root = 0) is at most
- * TP2_BVH_MAX_DEPTH - 1. An ordered traversal that keeps the far child on a
- * stack and descends into the near one holds at most depth(leaf) <=
- * TP2_BVH_MAX_DEPTH - 1 entries (one far sibling per ancestor level), and
- * one that pushes the root first or pushes both children before popping
- * one still peaks at TP2_BVH_MAX_DEPTH, so a stack of TP2_BVH_MAX_DEPTH
- * entries never overflows. */
+ * TP2_BVH_MAX_DEPTH - 1. A traversal that pushes the far child and
+ * descends into the near one holds, at a node of depth d, at most d
+ * entries (one far sibling per level above it), so at most
+ * TP2_BVH_MAX_DEPTH - 1. Variants that push the root first, or push both
+ * children and then pop the near one, peak at TP2_BVH_MAX_DEPTH. Either
+ * way a stack of TP2_BVH_MAX_DEPTH entries never overflows. */
 #ifndef TP2_BVH_H
 #define TP2_BVH_H
 
@@ -17,13 +17,13 @@
 #define TP2_BVH_MAX_DEPTH 32
 
 /* One node as the shader reads it (std430: vec3 lo; int first; vec3 hi;
- * int count). Bounds are floats rounded outward from the spheres' exact
- * boxes, so a float slab test on them never misses a sphere. */
+ * int count). Bounds are floats rounded outward, so each node's box
+ * contains its spheres exactly, not just their float approximations. */
 struct bvh_node {
     float lo[3];
-    int32_t first; /* inner: left child (right = first + 1); leaf: first slot */
+    int32_t first; /* inner: left child, right is first + 1; leaf: 1st slot */
     float hi[3];
-    int32_t count; /* 0: inner node; > 0: leaf over slots [first, first + count) */
+    int32_t count; /* 0: inner; > 0: leaf over slots [first, first + count) */
 };
 
 _Static_assert(sizeof(struct bvh_node) == 32, "bvh_node is 32 bytes");
@@ -33,9 +33,9 @@ _Static_assert(offsetof(struct bvh_node, hi) == 16, "bvh_node.hi at 16");
 _Static_assert(offsetof(struct bvh_node, count) == 28, "bvh_node.count at 28");
 
 struct bvh {
-    struct bvh_node *nodes; /* nodes[0] is the root; NULL when n == 0 */
-    size_t node_count;      /* at most 2 n - 1 */
-    uint32_t *order; /* order[slot] = input sphere in that slot; a permutation */
+    struct bvh_node *nodes; /* NULL, like order, when n == 0 */
+    size_t node_count;      /* at most 2 n - 1; nodes[0] is the root */
+    uint32_t *order;        /* order[slot] = input sphere there; n entries */
 };
 
 /* Builds a BVH over n spheres given as (cx, cy, cz, r), r >= 0, with binned

@@ -24,6 +24,8 @@ void cli_usage(FILE *out)
           "  --spp N              samples per pixel (overrides the scene's\n"
           "                       'samples'; default 1, the pixel center)\n"
           "  --stats              print phase times and rays traced to stderr\n"
+          "  --bvh-min N          trace spheres through the BVH when there are\n"
+          "                       at least N (default 16; a tuning knob)\n"
           "  --quiet              no progress bar\n"
           "  --validate           enable the Khronos validation layer; any\n"
           "                       message fails the run (also TP2_VALIDATE=1)\n"
@@ -73,6 +75,11 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
         c->stats = true;
     } else if (strcmp(opt, "--quiet") == 0) {
         c->quiet = true;
+    } else if (strcmp(opt, "--bvh-min") == 0) {
+        if (!(v = option_value(argc, argv, i)) ||
+            parse_int(v, 1, INT_MAX, &c->bvh_min) != 0)
+            return usage_error("--bvh-min needs a positive number of spheres, found '%s'",
+                               v ? v : "nothing");
     } else if (strcmp(opt, "--spp") == 0) {
         if (!(v = option_value(argc, argv, i)) ||
             parse_int(v, 1, TP2_MAX_SAMPLES, &c->samples) != 0)

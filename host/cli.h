@@ -10,6 +10,7 @@ struct cli {
     int width, height; /* 0 when not given */
     int device_index;  /* -1: the best device */
     int samples;       /* --spp: samples per pixel; 0: the scene's */
+    int bvh_min;       /* --bvh-min: BVH from this many spheres; 0: default */
     bool use_double;   /* --precision double */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */

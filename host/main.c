@@ -55,6 +55,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
     struct render_options opt = {
         .device_index = c->device_index,
         .samples = c->samples,
+        .bvh_min = c->bvh_min,
         .use_double = c->use_double,
         .validate = c->validate,
         .count_rays = c->stats,

@@ -67,6 +67,7 @@ struct spec_values {
     VkBool32 flags[TP2_SPEC_SAMPLES];
     int32_t samples;
     VkBool32 spheres;
+    VkBool32 bvh;
 };
 
 static void spec_values(const struct scene_features *f, bool count_rays,
@@ -85,6 +86,7 @@ static void spec_values(const struct scene_features *f, bool count_rays,
         },
         .samples = f->samples,
         .spheres = f->spheres,
+        .bvh = f->bvh,
     };
     for (uint32_t id = 0; id < TP2_SPEC_SAMPLES; id++)
         map[id] = (VkSpecializationMapEntry){id, (uint32_t)(id * sizeof(VkBool32)),
@@ -93,6 +95,8 @@ static void spec_values(const struct scene_features *f, bool count_rays,
         TP2_SPEC_SAMPLES, offsetof(struct spec_values, samples), sizeof(int32_t)};
     map[TP2_SPEC_SPHERES] = (VkSpecializationMapEntry){
         TP2_SPEC_SPHERES, offsetof(struct spec_values, spheres), sizeof(VkBool32)};
+    map[TP2_SPEC_BVH] = (VkSpecializationMapEntry){
+        TP2_SPEC_BVH, offsetof(struct spec_values, bvh), sizeof(VkBool32)};
 }
 
 static int create_pipeline(struct renderer *r, bool use_double,
@@ -326,6 +330,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .height = opt->height,
         .use_double = opt->use_double,
         .samples = opt->samples,
+        .bvh_min_spheres = opt->bvh_min,
     };
     VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);
     int rc = -1;

@@ -8,6 +8,11 @@
 #include "bvh.h"
 #include "gpu_layout.h"
 
+/* Fewer spheres than this are tested in a plain loop: on lavapipe's 8-wide
+ * SIMD the loop beats a divergent tree walk up to about here (measured with
+ * --bvh-min, README.TXT "Performance"). */
+#define TP2_BVH_MIN_SPHERES 16
+
 _Static_assert(TP2_BVH_STACK >= TP2_BVH_MAX_DEPTH,
                "the shader's BVH stack must hold the deepest tree");
 
@@ -222,6 +227,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     camera_basis(s, opt->width, opt->height, &lay.cam);
     out->features = scene_features(s, lay.samples);
     int rc = layout_objects(s, &lay);
+    int bvh_min = opt->bvh_min_spheres ? opt->bvh_min_spheres : TP2_BVH_MIN_SPHERES;
+    out->features.bvh = lay.nspheres >= (size_t)bvh_min;
     if (rc == 0)
         rc = opt->use_double ? pack_d(s, &lay, opt, out) : pack_f(s, &lay, opt, out);
     if (rc == 0)

@@ -15,6 +15,7 @@
 /* What the shader is specialised for: the features the scene uses. */
 struct scene_features {
     bool reflect, refract, checker, spheres, planes, fog, lens, area;
+    bool bvh; /* enough spheres that the BVH beats a plain loop */
     int samples;
 };
 
@@ -22,6 +23,7 @@ struct pack_options {
     int width, height;
     bool use_double; /* pack for the double-precision (reference) shader */
     int samples;     /* samples per pixel; 0: the scene's, else 1 */
+    int bvh_min_spheres; /* use the BVH from this many spheres; 0: default */
 };
 
 struct packed_scene {

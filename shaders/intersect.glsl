@@ -95,7 +95,12 @@ void hit_spheres(int first, int count, rvec3 o, rvec3 d, Start start, inout Hit 
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
 {
     Hit h = Hit(tmax, -1);
-    if (HAS_SPHERES) {
+    if (HAS_SPHERES && !USE_BVH) { // few spheres: a plain loop is faster
+        hit_spheres(0, frame.geometry.x, o, d, start, h);
+        if (any_hit && h.object >= 0)
+            return h;
+    }
+    if (HAS_SPHERES && USE_BVH) {
         rvec3 inv_d = safe_inverse(d);
         int stack_node[TP2_BVH_STACK];
         real stack_t[TP2_BVH_STACK];

@@ -70,3 +70,4 @@ layout(constant_id = TP2_SPEC_AREA) const bool HAS_AREA = false;
 layout(constant_id = TP2_SPEC_STATS) const bool COUNT_RAYS = false;
 layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
 layout(constant_id = TP2_SPEC_SPHERES) const bool HAS_SPHERES = true;
+layout(constant_id = TP2_SPEC_BVH) const bool USE_BVH = true;

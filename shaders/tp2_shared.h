@@ -28,7 +28,8 @@
 #define TP2_SPEC_STATS 7     /* bool: count rays (--stats) */
 #define TP2_SPEC_SAMPLES 8   /* int: samples per pixel */
 #define TP2_SPEC_SPHERES 9   /* bool: the scene has spheres */
-#define TP2_SPEC_COUNT 10
+#define TP2_SPEC_BVH 10      /* bool: spheres through the BVH, else a loop */
+#define TP2_SPEC_COUNT 11
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0

@@ -1,0 +1,236 @@
+#!/usr/bin/env python3
+"""check_effects.py TP2 CASE: sampling, lens, fog, area lights, BVH, cache.
+
+`check_effects.py --list` prints the case names. Expected values come from
+SPEC 3-4 worked out here in double precision, never from tp2's output;
+float images are compared within 1e-5 unless a case says otherwise."""
+import glob
+import math
+import os
+import sys
+import tempfile
+
+from tp2test import read_pfm, render, run, scene_file
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOL = 1e-5
+
+# A camera at the origin looking down -z at a plane z = -5 facing it; the
+# vertical fov makes one pixel exactly 1 x 1 unit on the plane at 5 x 4.
+FOV_1UNIT = math.degrees(2 * math.atan(0.4))
+CAMERA = f"0 0 0\n0 0 -1\n0 1 0\n{FOV_1UNIT!r}\n"
+WALL = "plane 0 0 1 5\n"  # z = -5, normal toward the camera
+AMBIENT_ONLY = "1\n1 0 0 0 0 0 0\n"  # ka = 1, nothing else
+
+
+def approx(a, b, tol=TOL):
+    return all(abs(x - y) <= tol for x, y in zip(a, b))
+
+
+def pixel_dir(i, j, w, h, fov):
+    """SPEC 4's camera ray for the camera above (w = -z, u = x, v = y)."""
+    t = math.tan(math.radians(fov) / 2)
+    x = (2 * (i + 0.5) / w - 1) * t * w / h
+    y = (1 - 2 * (j + 0.5) / h) * t
+    n = math.sqrt(x * x + y * y + 1)
+    return x / n, y / n, -1 / n
+
+
+class Case:
+    def __init__(self, tp2, tmp):
+        self.tp2, self.tmp, self.failures = tp2, tmp, []
+
+    def expect(self, cond, what):
+        if not cond:
+            self.failures.append(what)
+
+    def image(self, text, size=(5, 4), options=(), name="s", env=None):
+        """Renders scene text to PFM; returns its rows."""
+        scene = scene_file(self.tmp, name + ".txt", text)
+        out = os.path.join(self.tmp, name + ".pfm")
+        render(self.tp2, scene, out, size, options, env)
+        return read_pfm(out)[2]
+
+
+def case_fog_background(c):
+    """With fog, a ray that hits nothing returns the fog color."""
+    rows = c.image(CAMERA + "1\n0 0 0 1 1 1 0 0 0\n0\n0\n0\nfog 0.2 0.4 0.6 0.3\n")
+    for row in rows:
+        for p in row:
+            c.expect(approx(p, (0.2, 0.4, 0.6)), f"fog miss {p}")
+
+
+def case_fog_distance(c):
+    """A segment of length t keeps exp(-density t) of its color."""
+    rows = c.image(CAMERA + "1\n0 0 0 1 1 1 0 0 0\n1\nsolid 0.9 0.5 0.1\n" + AMBIENT_ONLY +
+                   "1\n0 0 " + WALL + "fog 0.1 0.2 0.3 0.15\n")
+    for j, row in enumerate(rows):
+        for i, p in enumerate(row):
+            t = 5 / -pixel_dir(i, j, 5, 4, FOV_1UNIT)[2]
+            keep = math.exp(-0.15 * t)
+            want = [keep * a + (1 - keep) * f for a, f in zip((0.9, 0.5, 0.1), (0.1, 0.2, 0.3))]
+            c.expect(approx(p, want), f"fog at ({i},{j}): {p} != {want}")
+
+
+def stratified_scene(extra=""):
+    """Checks of side 1 whose vertical edges run through every pixel's center."""
+    return (CAMERA + "1\n0 0 0 1 1 1 0 0 0\n1\nchecker 1 0.5 0  0 0.25 1  1\n" +
+            AMBIENT_ONLY + "1\n0 0 " + WALL + extra)
+
+
+def case_samples_stratified(c):
+    """Stratified samples split a pixel cut in half by an edge exactly 8 : 8."""
+    rows = c.image(stratified_scene("samples 16\n"))
+    want = (0.5, 0.375, 0.5)
+    for row in rows:
+        for p in row:
+            c.expect(approx(p, want), f"half-covered pixel {p} != {want}")
+
+
+def case_spp_overrides_scene(c):
+    """--spp overrides the scene's samples; samples 1 is the pixel center."""
+    a = c.image(stratified_scene("samples 16\n"), options=["--spp", "4"], name="a")
+    b = c.image(stratified_scene(), options=["--spp", "4"], name="b")
+    one = c.image(stratified_scene("samples 1\n"), name="one")
+    center = c.image(stratified_scene(), name="center")
+    c.expect(a == b, "--spp 4 differs between scenes with and without 'samples 16'")
+    c.expect(one == center, "'samples 1' differs from the default pixel-center sample")
+    # Three samples cannot split a half-covered pixel evenly.
+    three = c.image(stratified_scene("samples 16\n"), options=["--spp", "3"], name="three")
+    c.expect(not approx(three[0][0], (0.5, 0.375, 0.5)), "--spp 3 was ignored")
+
+
+def effects_scene():
+    with open(os.path.join(HERE, "render", "effects.txt")) as f:
+        return f.read()
+
+
+def case_deterministic(c):
+    """The same command gives the same image, with every random feature on."""
+    a = c.image(effects_scene(), (64, 48), name="a")
+    b = c.image(effects_scene(), (64, 48), name="b")
+    c.expect(a == b, "two runs of the same command differ")
+
+
+def lens_scene(lens):
+    return (CAMERA + "1\n0 0 0 1 1 1 0 0 0\n1\nchecker 1 1 1  0 0 0  0.7\n" + AMBIENT_ONLY +
+            "1\n0 0 " + WALL + "samples 16\n" + lens)
+
+
+def case_lens_focal_plane(c):
+    """Everything on the focal plane stays sharp: the lens image equals the
+    pinhole image up to samples that land on a check's edge."""
+    pinhole = c.image(lens_scene(""), (20, 16), name="pinhole")
+    lens = c.image(lens_scene("lens 0.5 5\n"), (20, 16), name="lens")
+    diffs = [abs(a[0] - b[0]) for ra, rb in zip(pinhole, lens) for a, b in zip(ra, rb)]
+    c.expect(max(diffs) <= 1 / 16 + TOL, f"a focal-plane pixel moved by {max(diffs)}")
+    c.expect(sum(d > TOL for d in diffs) <= 4, f"{sum(d > TOL for d in diffs)} pixels changed")
+
+
+def case_lens_blurs(c):
+    """Off the focal plane the lens blurs: a small sphere in front of the wall
+    gains many partly covered pixels."""
+    text = (CAMERA + "1\n0 0 0 1 1 1 0 0 0\n2\nsolid 1 1 1\nsolid 0 0 0\n" + AMBIENT_ONLY +
+            "2\n0 0 sphere 0 0 -2 0.3\n1 0 " + WALL + "samples 64\n")
+    def partial(rows):
+        return sum(0.05 < p[0] < 0.95 for row in rows for p in row)
+    sharp = partial(c.image(text, (40, 32), name="sharp"))
+    blurred = partial(c.image(text + "lens 0.2 5\n", (40, 32), name="blurred"))
+    c.expect(blurred > 3 * sharp, f"partial pixels: {blurred} with lens, {sharp} without")
+
+
+def shadow_scene(area):
+    """Looking down at a floor beside a sphere lit from above and aside."""
+    return ("0 0 10\n0 0 0\n0 1 0\n60\n"
+            "2\n0 0 0 0.2 0.2 0.2 0 0 0\n3 0 6 1 1 1 1 0 0\n"
+            "1\nsolid 1 1 1\n1\n1 1 0 1 0 0 0\n"
+            "2\n0 0 sphere 0 0 2 1\n0 0 plane 0 0 1 0\n" + area)
+
+
+def case_arealight_soft_shadow(c):
+    """An area light shrinks the umbra and adds a penumbra; a tiny one is a
+    point light again."""
+    point = c.image(shadow_scene(""), (40, 40), name="point")
+    area = c.image(shadow_scene("arealight 1 0.8 64\n"), (40, 40), name="area")
+    tiny = c.image(shadow_scene("arealight 1 1e-6 16\n"), (40, 40), name="tiny")
+    ambient = 0.2
+    def umbra(rows):
+        return sum(abs(p[0] - ambient) < TOL for row in rows for p in row)
+    c.expect(0 < umbra(area) < umbra(point), f"umbra {umbra(area)} vs point {umbra(point)}")
+    partial = sum(ambient + 0.01 < a[0] < p[0] - 0.01
+                  for ra, rp in zip(area, point) for a, p in zip(ra, rp))
+    c.expect(partial >= 20, f"only {partial} penumbra pixels")
+    worst = max(abs(a[0] - b[0]) for ra, rb in zip(point, tiny) for a, b in zip(ra, rb))
+    c.expect(worst < 1e-4, f"a tiny area light differs from the point light by {worst}")
+
+
+def case_bvh_matches_loop(c):
+    """Spheres through the BVH give exactly the image of the plain loop."""
+    scene = os.path.join(HERE, "render", "many-spheres.txt")
+    outs = []
+    for name, n in (("bvh", "1"), ("loop", "100000")):
+        out = os.path.join(c.tmp, name + ".pfm")
+        render(c.tp2, scene, out, (96, 72), ["--bvh-min", n])
+        outs.append(read_pfm(out)[2])
+    c.expect(outs[0] == outs[1], "BVH and loop images differ")
+
+
+def case_pipeline_cache(c):
+    """The cache is written, reused, and survives corrupt or foreign files."""
+    env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
+    first = c.image(effects_scene(), (16, 12), name="first", env=env)
+    files = glob.glob(os.path.join(c.tmp, "cache", "tp2", "pipelines-*.bin"))
+    c.expect(len(files) == 1, f"cache files: {files}")
+    c.expect(c.image(effects_scene(), (16, 12), name="warm", env=env) == first, "warm run differs")
+    for junk in (os.urandom(3000), b"", files[0:1] and open(files[0], "rb").read()[:20],
+                 b"\x20\0\0\0\x01\0\0\0" + os.urandom(100)):
+        with open(files[0], "wb") as f:
+            f.write(junk)
+        again = c.image(effects_scene(), (16, 12), name="again", env=env)
+        c.expect(again == first, f"a corrupt cache ({len(junk)} bytes) changed the image")
+    # (Mesa's own shader cache would complain about the bogus folder.)
+    nowhere = {"XDG_CACHE_HOME": "/proc/no/such/folder", "HOME": "/proc/no/such/home",
+               "MESA_SHADER_CACHE_DIR": os.path.join(c.tmp, "mesa")}
+    c.expect(c.image(effects_scene(), (16, 12), name="nocache", env=nowhere) == first,
+             "an unwritable cache folder changed the image")
+
+
+def case_stats(c):
+    """--stats names every phase and counts W x H x spp camera rays."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    status, _, err = run(c.tp2, ["--stats", "--spp", "3", scene, os.path.join(c.tmp, "o.ppm"),
+                                 "10", "7"])
+    c.expect(status == 0, f"exit {status}: {err}")
+    for phase in ("parse", "device", "upload", "pipeline", "render", "readback", "write"):
+        c.expect(f"tp2: {phase} " in err, f"no {phase} line in {err!r}")
+    counts = {}
+    for line in err.splitlines():
+        words = line.split()
+        if len(words) >= 4 and words[1] == "rays":
+            counts[words[2]] = int(words[3])
+    c.expect(counts.get("camera") == 10 * 7 * 3, f"camera rays {counts.get('camera')}")
+    c.expect(counts.get("shadow", 0) > 0 and counts.get("reflected", 0) > 0, f"{counts}")
+    c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"), f"{counts}")
+
+
+CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
+
+
+def main():
+    if sys.argv[1:] == ["--list"]:
+        print("\n".join(CASES))
+        return 0
+    tp2, case = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        c = Case(tp2, tmp)
+        try:
+            CASES[case](c)
+        except AssertionError as e:
+            c.failures.append(str(e))
+    for f in c.failures:
+        print("FAIL", f)
+    return 1 if c.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

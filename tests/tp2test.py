@@ -1,0 +1,47 @@
+"""tp2test.py: running tp2 and reading its images, for the Python tests."""
+import os
+import struct
+import subprocess
+
+
+def run(tp2, args, env=None, timeout=600):
+    """Runs tp2 with args; returns (status, stdout, stderr) as text."""
+    e = dict(os.environ)
+    e.update(env or {})
+    r = subprocess.run([tp2] + list(args), capture_output=True, timeout=timeout, env=e)
+    return r.returncode, r.stdout.decode("utf-8", "replace"), r.stderr.decode("utf-8", "replace")
+
+
+def render(tp2, scene, out, size=(), options=(), env=None):
+    """Renders scene to out; raises AssertionError unless exit 0 and silent."""
+    status, _, err = run(tp2, list(options) + [scene, out] + [str(v) for v in size], env)
+    assert status == 0 and err == "", f"tp2 {options} {scene}: exit {status}, stderr {err!r}"
+
+
+def read_pfm(path):
+    """(width, height, rows) with rows[y][x] = (r, g, b), y = 0 at the top."""
+    with open(path, "rb") as f:
+        data = f.read()
+    magic, dims, scale, pixels = data.split(b"\n", 3)
+    assert magic == b"PF" and float(scale) < 0, "little-endian colour PFM expected"
+    w, h = map(int, dims.split())
+    values = struct.unpack(f"<{3 * w * h}f", pixels[:12 * w * h])
+    rows = [[values[3 * (r * w + x):3 * (r * w + x) + 3] for x in range(w)] for r in range(h)]
+    return w, h, rows[::-1]
+
+
+def read_ppm(path):
+    """(width, height, bytes) of a binary P6 file with maxval 255."""
+    with open(path, "rb") as f:
+        data = f.read()
+    magic, w, h, maxval, pixels = data.split(maxsplit=4)
+    assert magic == b"P6" and maxval == b"255"
+    return int(w), int(h), pixels
+
+
+def scene_file(folder, name, text):
+    """Writes a scene and returns its path."""
+    path = os.path.join(folder, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
