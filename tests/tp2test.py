@@ -1,5 +1,6 @@
 """tp2test.py: running tp2 and reading its images, for the Python tests."""
 import os
+import re
 import struct
 import subprocess
 
@@ -31,12 +32,14 @@ def read_pfm(path):
 
 
 def read_ppm(path):
-    """(width, height, bytes) of a binary P6 file with maxval 255."""
+    """(width, height, RGB bytes) of a P6 file with maxval 255. One white
+    space byte ends the header: the pixels may begin with bytes that look
+    like white space themselves."""
     with open(path, "rb") as f:
         data = f.read()
-    magic, w, h, maxval, pixels = data.split(maxsplit=4)
-    assert magic == b"P6" and maxval == b"255"
-    return int(w), int(h), pixels
+    m = re.match(rb"P6\s+(\d+)\s+(\d+)\s+255\s", data)
+    assert m, f"{path}: no P6 header with maxval 255"
+    return int(m[1]), int(m[2]), data[m.end():]
 
 
 def scene_file(folder, name, text):
