@@ -4,21 +4,14 @@
 `check_cli.py --list` prints the case names. Each case runs tp2 in a fresh
 folder and checks exit status, the message, and which files exist after."""
 import os
-import subprocess
 import sys
-import tempfile
+
+import tp2test
+from tp2test import run
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "render", "cli.txt")
 PARSE_ERROR = os.path.join(HERE, "errors", "not-a-number.txt")
-
-
-def run(tp2, args, env=None):
-    """Runs tp2 with args; returns (status, stdout, stderr)."""
-    e = dict(os.environ)
-    e.update(env or {})
-    r = subprocess.run([tp2] + args, capture_output=True, timeout=120, env=e)
-    return r.returncode, r.stdout.decode(), r.stderr.decode()
 
 
 def ppm_size(path):
@@ -29,16 +22,9 @@ def ppm_size(path):
     return int(fields[1]), int(fields[2])
 
 
-class Check:
-    def __init__(self, tp2, tmp):
-        self.tp2, self.tmp, self.failures = tp2, tmp, []
-
+class Check(tp2test.Case):
     def out(self, name="out.ppm"):
         return os.path.join(self.tmp, name)
-
-    def expect(self, cond, what):
-        if not cond:
-            self.failures.append(what)
 
     def usage_error(self, args, message):
         """Exit 2, stderr starts with message, nothing written."""
@@ -140,21 +126,5 @@ def case_formats(c):
             c.expect(status == 0 and f.read(len(magic)) == magic, f"{name}: {status} {err!r}")
 
 
-CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
-
-
-def main():
-    if sys.argv[1:] == ["--list"]:
-        print("\n".join(CASES))
-        return 0
-    tp2, case = sys.argv[1], sys.argv[2]
-    with tempfile.TemporaryDirectory() as tmp:
-        c = Check(tp2, tmp)
-        CASES[case](c)
-    for f in c.failures:
-        print("FAIL", f)
-    return 1 if c.failures else 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(tp2test.run_cases(globals(), Check))

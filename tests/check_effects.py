@@ -8,8 +8,8 @@ import glob
 import math
 import os
 import sys
-import tempfile
 
+import tp2test
 from tp2test import read_pfm, render, run, scene_file
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -36,14 +36,7 @@ def pixel_dir(i, j, w, h, fov):
     return x / n, y / n, -1 / n
 
 
-class Case:
-    def __init__(self, tp2, tmp):
-        self.tp2, self.tmp, self.failures = tp2, tmp, []
-
-    def expect(self, cond, what):
-        if not cond:
-            self.failures.append(what)
-
+class Case(tp2test.Case):
     def image(self, text, size=(5, 4), options=(), name="s", env=None):
         """Renders scene text to PFM; returns its rows."""
         scene = scene_file(self.tmp, name + ".txt", text)
@@ -213,24 +206,5 @@ def case_stats(c):
     c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"), f"{counts}")
 
 
-CASES = {name[5:]: fn for name, fn in globals().items() if name.startswith("case_")}
-
-
-def main():
-    if sys.argv[1:] == ["--list"]:
-        print("\n".join(CASES))
-        return 0
-    tp2, case = sys.argv[1], sys.argv[2]
-    with tempfile.TemporaryDirectory() as tmp:
-        c = Case(tp2, tmp)
-        try:
-            CASES[case](c)
-        except AssertionError as e:
-            c.failures.append(str(e))
-    for f in c.failures:
-        print("FAIL", f)
-    return 1 if c.failures else 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(tp2test.run_cases(globals(), Case))

@@ -20,10 +20,10 @@ import os
 import re
 import struct
 import sys
-import tempfile
 import zlib
 from collections import namedtuple
 
+import tp2test
 from tp2test import read_pfm, read_ppm, render
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -449,26 +449,8 @@ def read_image(path):
 # ---------------------------------------------------------------- cases
 
 
-class CaseFailed(Exception):
-    """A check a case cannot go on without failed."""
-
-
-class Case:
-    """One case's temporary folder, renders and failures."""
-
-    def __init__(self, tp2, tmp):
-        self.tp2, self.tmp, self.failures = tp2, tmp, []
-
-    def expect(self, cond, what):
-        """Records a failure unless cond."""
-        if not cond:
-            self.failures.append(what)
-        return cond
-
-    def require(self, cond, what):
-        """Stops the case unless cond (the case's own premise)."""
-        if not cond:
-            raise CaseFailed(what)
+class Case(tp2test.Case):
+    """A case with renders of tests/render/ scenes and pixel checks."""
 
     def render(self, name, ext="pfm", size=(), options=()):
         """Renders tests/render/NAME.txt to a file of type ext; its Image."""
@@ -889,27 +871,5 @@ def case_png_matches_ppm(c):
 CASES = {name[5:]: f for name, f in sorted(globals().items()) if name.startswith("case_")}
 
 
-def main():
-    """Runs one case, or lists them."""
-    if sys.argv[1:] == ["--list"]:
-        print("\n".join(CASES))
-        return 0
-    if len(sys.argv) != 3 or sys.argv[2] not in CASES:
-        print(f"usage: {sys.argv[0]} TP2 CASE | --list", file=sys.stderr)
-        return 2
-    tp2, name = sys.argv[1], sys.argv[2]
-    with tempfile.TemporaryDirectory() as tmp:
-        c = Case(tp2, tmp)
-        try:
-            CASES[name](c)
-        except (CaseFailed, AssertionError) as e:
-            c.failures.append(str(e))
-    for f in c.failures[:10]:
-        print(f"FAIL {name}: {f}")
-    if len(c.failures) > 10:
-        print(f"FAIL {name}: ... {len(c.failures) - 10} more")
-    return 1 if c.failures else 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(tp2test.run_cases(globals(), Case))

@@ -1,6 +1,8 @@
 """tp2test.py: running tp2 and reading its images, for the Python tests."""
 import os
 import re
+import sys
+import tempfile
 import struct
 import subprocess
 
@@ -48,3 +50,50 @@ def scene_file(folder, name, text):
     with open(path, "w") as f:
         f.write(text)
     return path
+
+
+class CaseFailed(Exception):
+    """A check a case cannot go on without failed."""
+
+
+class Case:
+    """One test case's temporary folder and failures."""
+
+    def __init__(self, tp2, tmp):
+        self.tp2, self.tmp, self.failures = tp2, tmp, []
+
+    def expect(self, cond, what):
+        """Records a failure unless cond; returns cond."""
+        if not cond:
+            self.failures.append(what)
+        return cond
+
+    def require(self, cond, what):
+        """Stops the case unless cond (the case's own premise)."""
+        if not cond:
+            raise CaseFailed(what)
+
+
+def run_cases(namespace, case_class=Case):
+    """main() of a case script: `SCRIPT --list` prints the names of the
+    functions case_NAME in namespace; `SCRIPT TP2 NAME` runs one in a fresh
+    folder and prints its failures. Returns the exit status."""
+    cases = {n[5:]: f for n, f in namespace.items() if n.startswith("case_")}
+    if sys.argv[1:] == ["--list"]:
+        print("\n".join(cases))
+        return 0
+    if len(sys.argv) != 3 or sys.argv[2] not in cases:
+        print(f"usage: {sys.argv[0]} TP2 CASE | --list", file=sys.stderr)
+        return 2
+    tp2, name = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as tmp:
+        c = case_class(tp2, tmp)
+        try:
+            cases[name](c)
+        except (CaseFailed, AssertionError) as e:
+            c.failures.append(str(e))
+    for f in c.failures[:10]:
+        print(f"FAIL {name}: {f}")
+    if len(c.failures) > 10:
+        print(f"FAIL {name}: ... {len(c.failures) - 10} more")
+    return 1 if c.failures else 0
