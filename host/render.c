@@ -1,5 +1,6 @@
 #include "render.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -15,9 +16,9 @@
 #include "vk_check.h"
 #include "vk_context.h"
 
-/* Pixels per submission side: bounds the work of one submission so that a
- * GPU's watchdog never sees a long dispatch. */
-#define TP2_TILE 256
+/* Camera samples per submission: bounds the work of one submission so that
+ * a GPU's watchdog never sees a long dispatch (and the progress bar moves). */
+#define TP2_TILE_SAMPLES (256 * 256)
 
 struct renderer {
     struct vkc vk;
@@ -264,18 +265,29 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h)
     return 0;
 }
 
-static int run_tiles(struct renderer *r, int width, int height, bool show_progress)
+/* Side of a square tile of about TP2_TILE_SAMPLES camera samples, a
+ * multiple of the workgroup, from 32 up to 256 pixels. */
+static int tile_side(int samples)
+{
+    int side = (int)sqrt((double)TP2_TILE_SAMPLES / samples);
+    side -= side % TP2_GROUP_X;
+    return side < 32 ? 32 : side > 256 ? 256 : side;
+}
+
+static int run_tiles(struct renderer *r, int width, int height, int samples,
+                     bool show_progress)
 {
     struct progress bar;
     progress_start(&bar, show_progress);
-    int tiles_x = (width + TP2_TILE - 1) / TP2_TILE;
-    int tiles_y = (height + TP2_TILE - 1) / TP2_TILE;
+    int side = tile_side(samples);
+    int tiles_x = (width + side - 1) / side;
+    int tiles_y = (height + side - 1) / side;
     int rc = 0;
     for (int ty = 0; ty < tiles_y && rc == 0; ty++)
         for (int tx = 0; tx < tiles_x && rc == 0; tx++) {
-            int x = tx * TP2_TILE, y = ty * TP2_TILE;
-            int w = width - x < TP2_TILE ? width - x : TP2_TILE;
-            int h = height - y < TP2_TILE ? height - y : TP2_TILE;
+            int x = tx * side, y = ty * side;
+            int w = width - x < side ? width - x : side;
+            int h = height - y < side ? height - y : side;
             rc = run_tile(r, x, y, w, h);
             progress_update(&bar, (double)(ty * tiles_x + tx + 1) / (tiles_x * tiles_y));
         }
@@ -351,7 +363,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         create_descriptors(&r) != 0 || create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
-    if (run_tiles(&r, opt->width, opt->height, opt->progress) != 0)
+    if (run_tiles(&r, opt->width, opt->height, packed.features.samples, opt->progress) != 0)
         goto done;
     double t4 = clock_seconds();
     memcpy(rgba, r.buffers[TP2_BINDING_IMAGE].mapped, (size_t)image_size);
