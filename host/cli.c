@@ -24,6 +24,10 @@ void cli_usage(FILE *out)
           "  --spp N              samples per pixel (overrides the scene's\n"
           "                       'samples'; default 1, the pixel center)\n"
           "  --stats              print phase times and rays traced to stderr\n"
+          "  --bailout W          do not trace reflected or transmitted rays\n"
+          "                       whose weight (product of kr, kt, fog) is\n"
+          "                       below W, like POV-Ray's adc_bailout (default\n"
+          "                       0: the exact model)\n"
           "  --bvh-min N          trace spheres through the BVH when there are\n"
           "                       at least N (default 16; a tuning knob)\n"
           "  --quiet              no progress bar\n"
@@ -53,6 +57,18 @@ static int parse_int(const char *s, long lo, long hi, int *out)
     return 0;
 }
 
+/* A number in [0, 1], the whole string; -1 if not. */
+static int parse_weight(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || end == s || *end || !(v >= 0 && v <= 1))
+        return -1;
+    *out = v;
+    return 0;
+}
+
 /* Consumes the value of option argv[*i]; NULL if missing. */
 static const char *option_value(int argc, char **argv, int *i)
 {
@@ -75,6 +91,10 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
         c->stats = true;
     } else if (strcmp(opt, "--quiet") == 0) {
         c->quiet = true;
+    } else if (strcmp(opt, "--bailout") == 0) {
+        if (!(v = option_value(argc, argv, i)) || parse_weight(v, &c->bailout) != 0)
+            return usage_error("--bailout needs a weight from 0 to 1, found '%s'",
+                               v ? v : "nothing");
     } else if (strcmp(opt, "--bvh-min") == 0) {
         if (!(v = option_value(argc, argv, i)) ||
             parse_int(v, 1, INT_MAX, &c->bvh_min) != 0)

@@ -11,6 +11,7 @@ struct cli {
     int device_index;  /* -1: the best device */
     int samples;       /* --spp: samples per pixel; 0: the scene's */
     int bvh_min;       /* --bvh-min: BVH from this many spheres; 0: default */
+    double bailout;    /* --bailout: least weight of a traced ray; 0: all */
     bool use_double;   /* --precision double */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */

@@ -21,6 +21,7 @@ struct TP2_T(gpu_frame) {
     TP2_VEC4(fog);      /* rgb, density */
     TP2_VEC4(lens);     /* aperture radius, focal distance */
     TP2_VEC4(area);     /* x: arealight radius */
+    TP2_VEC4(limits);   /* x: bailout, the least weight a ray is traced with */
     TP2_IVEC4(counts);  /* width, height, point lights, objects */
     TP2_IVEC4(geometry); /* spheres, planes (after the spheres), BVH nodes */
     TP2_IVEC4(sampling); /* lattice generator, arealight index, samples */

@@ -56,6 +56,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
         .device_index = c->device_index,
         .samples = c->samples,
         .bvh_min = c->bvh_min,
+        .bailout = c->bailout,
         .use_double = c->use_double,
         .validate = c->validate,
         .count_rays = c->stats,

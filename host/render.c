@@ -343,6 +343,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .use_double = opt->use_double,
         .samples = opt->samples,
         .bvh_min_spheres = opt->bvh_min,
+        .bailout = opt->bailout,
     };
     VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);
     int rc = -1;

@@ -13,6 +13,7 @@ struct render_options {
     int device_index;  /* -1: the best device */
     int samples;       /* samples per pixel; 0: the scene's (default 1) */
     int bvh_min;       /* BVH from this many spheres; 0: the default */
+    double bailout;    /* least weight of a traced ray; 0: the exact model */
     bool use_double;   /* double-precision geometry: the reference image */
     bool validate;     /* Khronos validation layer on, messages counted */
     bool count_rays;   /* fill render_stats.rays (costs a little speed) */

@@ -24,6 +24,7 @@ struct pack_options {
     bool use_double; /* pack for the double-precision (reference) shader */
     int samples;     /* samples per pixel; 0: the scene's, else 1 */
     int bvh_min_spheres; /* use the BVH from this many spheres; 0: default */
+    double bailout;  /* rays of smaller weight are not traced; 0: all are */
 };
 
 struct packed_scene {

@@ -13,6 +13,7 @@ struct Frame {
     vec4 fog;         // rgb, density
     vec4 lens;        // aperture radius, focal distance
     vec4 area;        // x: arealight radius
+    vec4 limits;      // x: bailout, the least weight a ray is traced with
     ivec4 counts;     // width, height, point lights, objects
     ivec4 geometry;   // spheres, planes (after the spheres), BVH nodes
     ivec4 sampling;   // lattice generator, arealight index, arealight samples

@@ -83,7 +83,8 @@ vec3 local_color(Finish fin, vec3 pig, rvec3 p, rvec3 nf, rvec3 view,
                  ShadowStart from, vec2 area_shift, inout uint shadow_rays)
 {
     vec3 c = fin.phong.x * frame.ambient.rgb * pig;
-    int nl = frame.counts.z;
+    // A finish with kd = ks = 0 (a pure mirror or glass) needs no shadow rays.
+    int nl = fin.phong.y == 0.0 && fin.phong.z == 0.0 ? 0 : frame.counts.z;
     for (int i = 0; i < nl; ++i) {
         Light light = lights[i];
         if (HAS_AREA && i == frame.sampling.y) {

@@ -93,6 +93,11 @@ vec3 trace(rvec3 eye, rvec3 dir, vec2 area_shift)
             color += weight * (max(kr, 0.0) + max(kt, 0.0)) * gray;
             continue;
         }
+        float bailout = frame.limits.x;
+        if (weight * kr < bailout)
+            kr = 0.0; // pruned: too faint to matter (--bailout)
+        if (weight * kt < bailout)
+            kt = 0.0;
         if (kr > 0.0 && sp < STACK_SIZE) {
             rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
             stack[sp++] = Ray(outside, r, back, weight * kr, depth);

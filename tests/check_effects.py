@@ -157,6 +157,19 @@ def case_arealight_soft_shadow(c):
     c.expect(worst < 1e-4, f"a tiny area light differs from the point light by {worst}")
 
 
+def case_bailout(c):
+    """--bailout W stops rays of weight below W: between two mirrors of kr
+    0.5 the center pixel sums 4 reflections instead of 11 and the gray tail."""
+    mirrors = (CAMERA + "1\n0 0 0 0.2 0.2 0.2 0 0 0\n1\nsolid 1 1 1\n1\n1 0 0 1 0.5 0 0\n"
+               "2\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n")
+    exact = 0.2 * sum(0.5 ** k for k in range(11)) + 0.5 ** 11 * 0.5
+    pruned = 0.2 * sum(0.5 ** k for k in range(4))  # 0.5^4 < 0.1
+    for options, want in (([], exact), (["--bailout", "0"], exact),
+                          (["--bailout", "0.1"], pruned)):
+        center = c.image(mirrors, (5, 5), options, name="b")[2][2]
+        c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
+
+
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop."""
     scene = os.path.join(HERE, "render", "many-spheres.txt")

@@ -304,7 +304,7 @@ struct buffer {
 
 /* Field lists, in declaration order, of gpu_layout_types.h. */
 #define FRAME_FIELDS(F, T) F(T, eye) F(T, u) F(T, v) F(T, w) F(T, ambient) \
-    F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, counts)           \
+    F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, limits) F(T, counts)           \
     F(T, geometry) F(T, sampling)
 #define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
 #define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, params) F(T, kind)
