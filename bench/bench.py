@@ -190,11 +190,11 @@ def default_scenes(corpus):
     return [p for p in found if not has_texmap(p)]
 
 
-def convert(scene, w, h, pov_path):
+def convert(scene, w, h, pov_path, bailout):
     with open(scene, encoding='latin-1') as fh:
         sc = scene2pov.parse_scene(fh.read(), scene)
     sdl, opts = scene2pov.convert(sc, w, h, os.path.basename(scene),
-                                  os.path.dirname(pov_path))
+                                  os.path.dirname(pov_path), bailout)
     with open(pov_path, 'w') as fh:
         fh.write(sdl)
     return opts
@@ -268,7 +268,7 @@ def smoke(args, env):
             sys.stdout.write(tail)
         pov = os.path.join(work, 'scene.pov')
         try:
-            extra = convert(scene, w, h, pov)
+            extra = convert(scene, w, h, pov, args.bailout)
         except (OSError, scene2pov.SceneError) as e:
             print('smoke: scene2pov failed: %s' % e)
             return 1
@@ -293,13 +293,14 @@ def bench_one(args, env, scene, w, h, work):
     row = {'scene': os.path.basename(scene), 'width': w, 'height': h,
            'runs': args.runs, 'tp2_status': 'ok', 'povray_status': 'ok'}
     try:
-        extra = convert(scene, w, h, pov)
+        extra = convert(scene, w, h, pov, args.bailout)
     except (OSError, scene2pov.SceneError, ValueError) as e:
         row['povray_status'] = 'scene2pov: %s' % e
         extra = None
     t_out = os.path.join(work, tag + '.tp2.ppm')
     p_out = os.path.join(work, tag + '.pov.ppm')
-    cmds = {'tp2': ([args.tp2, scene, t_out, str(w), str(h)], env, t_out)}
+    cmds = {'tp2': ([args.tp2, '--bailout', repr(args.bailout), scene, t_out, str(w), str(h)],
+                    env, t_out)}
     if extra is not None:
         cmds['povray'] = (pov_cmd(args.povray, pov, p_out, w, h, args.threads,
                                   extra), None, p_out)
@@ -458,6 +459,10 @@ def main(argv=None):
     ap.add_argument('--tp2', default=os.path.join(REPO, 'build', 'tp2'),
                     help='tp2 binary (default build/tp2 in the repository)')
     ap.add_argument('--povray', default='povray', help='POV-Ray binary')
+    ap.add_argument('--bailout', type=float, default=1 / 255,
+                    help='least ray weight traced, the same for both programs: '
+                         "tp2 --bailout and POV-Ray's adc_bailout (default 1/255, "
+                         'both defaults; 0: the exact model)')
     ap.add_argument('--imgcmp', default=os.path.join(REPO, 'build', 'tests', 'tp2-imgcmp'),
                     help='tp2-imgcmp binary, for --compare')
     ap.add_argument('--threads', type=int, default=2,
@@ -524,6 +529,8 @@ def main(argv=None):
             args.tp2, info['tp2_mtime'], info['git'], info['device']),
         '%s, %d worker threads (+WT%d), no anti-aliasing' % (
             info['povray'], args.threads, args.threads),
+        'pruning: tp2 --bailout %.6g, POV-Ray adc_bailout %.6g (0: none)' % (
+            args.bailout, args.bailout),
         'time: whole-process wall time, median of %d alternating runs after '
         '%d untimed warm-up run(s) each; CPU = user+system seconds of the '
         'process (median)' % (args.runs, args.warmup),

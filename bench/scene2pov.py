@@ -31,8 +31,8 @@ of each output file (see APPROXIMATIONS below); exact translations:
            form would need `right -x*W/H` with sky = up).
   depth    max_trace_level 11: POV-Ray stops a ray whose level (camera ray
            0, +1 per reflection/refraction) is >= 11, SPEC one with k > 10.
-  pruning  adc_bailout 0: POV-Ray never drops a ray for low weight (tp2 does
-           not either).
+  pruning  adc_bailout = tp2's --bailout (default 1/255, the default of
+           both programs; --bailout 0: neither drops a ray for low weight).
   gamma    assumed_gamma 1: colours are linear, as in SPEC.
   ambient  ambient_light = light 0's colour; finish ambient ka.
   lights   light_source at each light i >= 1 (point lights are invisible in
@@ -562,7 +562,7 @@ def pigment_sdl(p, kt, image_dir='.'):
     raise ValueError(t)
 
 
-def convert(sc, width, height, source_name, image_dir='.'):
+def convert(sc, width, height, source_name, image_dir='.', bailout=1 / 255):
     out = []
     notes = []           # deliberate approximations, written at the top
     w = unit(sub(sc['center'], sc['eye']))
@@ -800,7 +800,7 @@ def convert(sc, width, height, source_name, image_dir='.'):
     out.append('  assumed_gamma 1.0')
     out.append('  max_trace_level 11  // rays of depth 0..10 are traced, '
                'as SPEC k <= 10')
-    out.append('  adc_bailout 0       // never prune rays by weight')
+    out.append('  adc_bailout %s  // as tp2 --bailout' % f(bailout))
     out.append('  ambient_light rgb %s  // light 0' % vec(c0))
     out.append('}')
     out.append('background { color rgb 0.5 }')
@@ -826,6 +826,8 @@ def main(argv=None):
     ap.add_argument('size', nargs='*', type=int, metavar='W H',
                     help='image size (default: the scene\'s, else 400 300)')
     ap.add_argument('-o', '--output', help='output .pov (default: stdout)')
+    ap.add_argument('--bailout', type=float, default=1 / 255,
+                    help="adc_bailout, as tp2's --bailout (default 1/255)")
     args = ap.parse_args(argv)
     if len(args.size) not in (0, 2):
         ap.error('give both W and H or neither')
@@ -850,7 +852,8 @@ def main(argv=None):
     image_dir = os.path.dirname(os.path.abspath(args.output)) if args.output \
         else os.getcwd()
     try:
-        sdl, _ = convert(sc, W, H, os.path.basename(args.scene), image_dir)
+        sdl, _ = convert(sc, W, H, os.path.basename(args.scene), image_dir,
+                         args.bailout)
     except (OSError, ValueError) as e:
         print('scene2pov: %s' % e, file=sys.stderr)
         return 1

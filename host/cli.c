@@ -27,7 +27,8 @@ void cli_usage(FILE *out)
           "  --bailout W          do not trace reflected or transmitted rays\n"
           "                       whose weight (product of kr, kt, fog) is\n"
           "                       below W, like POV-Ray's adc_bailout (default\n"
-          "                       0: the exact model)\n"
+          "                       1/255; 0 with --precision double: the exact\n"
+          "                       model)\n"
           "  --bvh-min N          trace spheres through the BVH when there are\n"
           "                       at least N (default 16; a tuning knob)\n"
           "  --quiet              no progress bar\n"
@@ -129,6 +130,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
 {
     memset(c, 0, sizeof *c);
     c->device_index = -1;
+    c->bailout = -1; /* not given: set below from the precision */
     const char *env = getenv("TP2_VALIDATE");
     c->validate = env && strcmp(env, "1") == 0;
     const char *positional[4];
@@ -147,6 +149,8 @@ int cli_parse(int argc, char **argv, struct cli *c)
             positional[npos++] = a;
         }
     }
+    if (c->bailout < 0) /* the reference image prunes nothing */
+        c->bailout = c->use_double ? 0.0 : TP2_DEFAULT_BAILOUT;
     if (c->help || c->list_devices)
         return 0;
     if (npos != 2 && npos != 4)

@@ -11,13 +11,19 @@ struct cli {
     int device_index;  /* -1: the best device */
     int samples;       /* --spp: samples per pixel; 0: the scene's */
     int bvh_min;       /* --bvh-min: BVH from this many spheres; 0: default */
-    double bailout;    /* --bailout: least weight of a traced ray; 0: all */
+    double bailout;    /* --bailout: least weight of a traced ray; 0: all
+                        * are traced; default 1/255, 0 with --precision double */
     bool use_double;   /* --precision double */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */
     bool help, list_devices;
 };
+
+/* The default --bailout, POV-Ray's default adc_bailout: a ray this faint
+ * adds at most one 8-bit level where radiance is at most 1 (README.TXT,
+ * "Accuracy", has its measured error). */
+#define TP2_DEFAULT_BAILOUT (1.0 / 255.0)
 
 /* Fills c from argv. Returns 0, or -1 after printing "tp2: ..." and a hint
  * to stderr (a usage error: exit status 2). */

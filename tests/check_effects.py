@@ -159,13 +159,16 @@ def case_arealight_soft_shadow(c):
 
 def case_bailout(c):
     """--bailout W stops rays of weight below W: between two mirrors of kr
-    0.5 the center pixel sums 4 reflections instead of 11 and the gray tail."""
+    0.5 the center pixel sums 4 reflections (W = 0.1) or 8 (the default
+    1/255) instead of 11 and the gray tail (W = 0, and the double
+    reference)."""
     mirrors = (CAMERA + "1\n0 0 0 0.2 0.2 0.2 0 0 0\n1\nsolid 1 1 1\n1\n1 0 0 1 0.5 0 0\n"
                "2\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n")
     exact = 0.2 * sum(0.5 ** k for k in range(11)) + 0.5 ** 11 * 0.5
     pruned = 0.2 * sum(0.5 ** k for k in range(4))  # 0.5^4 < 0.1
-    for options, want in (([], exact), (["--bailout", "0"], exact),
-                          (["--bailout", "0.1"], pruned)):
+    default = 0.2 * sum(0.5 ** k for k in range(8))  # 0.5^8 < 1/255
+    for options, want in (([], default), (["--bailout", "0"], exact),
+                          (["--precision", "double"], exact), (["--bailout", "0.1"], pruned)):
         center = c.image(mirrors, (5, 5), options, name="b")[2][2]
         c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
 

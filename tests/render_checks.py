@@ -453,9 +453,12 @@ class Case(tp2test.Case):
     """A case with renders of tests/render/ scenes and pixel checks."""
 
     def render(self, name, ext="pfm", size=(), options=()):
-        """Renders tests/render/NAME.txt to a file of type ext; its Image."""
+        """Renders tests/render/NAME.txt to a file of type ext; its Image.
+        --bailout 0: these cases check the exact model, unpruned (the
+        accuracy_* tests measure the default pruning)."""
         out = os.path.join(self.tmp, f"{name}-{len(os.listdir(self.tmp))}.{ext}")
-        render(self.tp2, os.path.join(SCENES, name + ".txt"), out, size, options)
+        render(self.tp2, os.path.join(SCENES, name + ".txt"), out, size,
+               ["--bailout", "0"] + list(options))
         return read_image(out)
 
     def expect_pixel(self, img, i, j, want, what, rel=REL_TOL):
