@@ -55,10 +55,10 @@
  * trace loop pops at most this many rays. */
 #define TP2_MAX_RAYS 2047
 
-/* Pending rays on the explicit stack. Depth-first, two children per ray:
- * at most one waiting sibling per depth 1..k plus two children at k + 1,
- * and k + 1 <= TP2_MAX_DEPTH, so TP2_MAX_DEPTH + 1 slots always suffice. */
-#define TP2_STACK_SIZE (TP2_MAX_DEPTH + 1)
+/* Rays parked on the explicit stack. The walk follows a ray's first child
+ * at once and parks the second, so what is parked is at most one sibling
+ * per depth 1..TP2_MAX_DEPTH on the path being followed. */
+#define TP2_STACK_SIZE TP2_MAX_DEPTH
 
 /* Workgroup: 8x8 pixels, a multiple of lavapipe's 8-wide SIMD and of GPUs'
  * 32/64-wide subgroups. */

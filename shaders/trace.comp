@@ -48,74 +48,98 @@ struct Ray {
 
 uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 
+// Traces one ray: adds what it sees to color and returns how many
+// children it spawns (0 to 2), the first in `first`, the other in `second`.
+int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ray second)
+{
+    first = second = ray;
+    vec3 gray = frame.background.rgb;
+    Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false);
+    if (h.object < 0) {
+        color += ray.weight * (HAS_FOG ? frame.fog.rgb : gray);
+        return 0;
+    }
+    float weight = ray.weight;
+    if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
+        float keep = exp(-frame.fog.w * float(h.t));
+        color += weight * (1.0 - keep) * frame.fog.rgb;
+        weight *= keep;
+    }
+    Object obj = objects[h.object];
+    rvec3 p, n;
+    real scale;
+    surface_point(obj, ray.origin, ray.dir, h.t, p, n, scale);
+    bool entering = dot(ray.dir, n) < 0.0;
+    rvec3 nf = entering ? n : -n;
+    rvec3 offset = nf * (scale * TP2_REL_EPS);
+    bool is_sphere = obj.ids.x == TP2_OBJECT_SPHERE;
+    // Rays leaving on the incoming side start here, going along nf.
+    rvec3 outside = p + offset;
+    Start back = leaving(h.object, is_sphere, !entering);
+
+    Finish fin = finishes[obj.ids.z];
+    vec3 pig = pigment_color(obj.ids.y, p);
+    color += weight * local_color(fin, pig, p, nf, -ray.dir, ShadowStart(outside, back),
+                                  area_shift, ray_tally[TP2_STAT_SHADOW]);
+
+    float kr = HAS_REFLECT ? fin.optics.x : 0.0;
+    float kt = HAS_REFRACT ? fin.optics.y : 0.0;
+    int depth = ray.depth + 1;
+    if (depth > TP2_MAX_DEPTH) { // children past the limit are plain gray
+        color += weight * (max(kr, 0.0) + max(kt, 0.0)) * gray;
+        return 0;
+    }
+    float bailout = frame.limits.x;
+    int children = 0;
+    if (kr > 0.0 && weight * kr >= bailout) { // fainter ones are pruned
+        rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
+        first = Ray(outside, r, back, weight * kr, depth);
+        ++children;
+        ++ray_tally[TP2_STAT_REFLECTED];
+    }
+    if (kt > 0.0 && weight * kt >= bailout) {
+        real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
+        real cosi = -dot(ray.dir, nf);
+        real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+        Ray t;
+        if (k < 0.0) { // total internal reflection: the mirror direction
+            t = Ray(outside, ray.dir + 2.0 * cosi * nf, back, weight * kt, depth);
+        } else {
+            rvec3 dir_t = normalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
+            t = Ray(p - offset, dir_t, leaving(h.object, is_sphere, entering),
+                    weight * kt, depth);
+        }
+        if (children == 0)
+            first = t;
+        else
+            second = t;
+        ++children;
+        ++ray_tally[TP2_STAT_TRANSMITTED];
+    }
+    return children;
+}
+
+// The color seen along a camera ray. The walk follows each ray's first
+// child at once and parks the second on the stack, so the stack is only
+// touched where the tree branches.
 vec3 trace(rvec3 eye, rvec3 dir, vec2 area_shift)
 {
-    Ray stack[STACK_SIZE];
+    Ray pending[STACK_SIZE];
     int sp = 0;
-    stack[sp++] = Ray(eye, dir, NOWHERE, 1.0, 0);
+    Ray ray = Ray(eye, dir, NOWHERE, 1.0, 0);
+    bool live = true; // `ray` is still to be traced
     vec3 color = vec3(0.0);
-    vec3 gray = frame.background.rgb;
-
-    for (int iter = 0; iter < MAX_RAYS && sp > 0; ++iter) {
-        Ray ray = stack[--sp];
-        Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false);
-        if (h.object < 0) {
-            color += ray.weight * (HAS_FOG ? frame.fog.rgb : gray);
-            continue;
-        }
-        float weight = ray.weight;
-        if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
-            float keep = exp(-frame.fog.w * float(h.t));
-            color += weight * (1.0 - keep) * frame.fog.rgb;
-            weight *= keep;
-        }
-        Object obj = objects[h.object];
-        rvec3 p, n;
-        real scale;
-        surface_point(obj, ray.origin, ray.dir, h.t, p, n, scale);
-        bool entering = dot(ray.dir, n) < 0.0;
-        rvec3 nf = entering ? n : -n;
-        rvec3 offset = nf * (scale * TP2_REL_EPS);
-        bool is_sphere = obj.ids.x == TP2_OBJECT_SPHERE;
-        // Rays leaving on the incoming side start here, going along nf.
-        rvec3 outside = p + offset;
-        Start back = leaving(h.object, is_sphere, !entering);
-
-        Finish fin = finishes[obj.ids.z];
-        vec3 pig = pigment_color(obj.ids.y, p);
-        color += weight * local_color(fin, pig, p, nf, -ray.dir, ShadowStart(outside, back),
-                                      area_shift, ray_tally[TP2_STAT_SHADOW]);
-
-        float kr = HAS_REFLECT ? fin.optics.x : 0.0;
-        float kt = HAS_REFRACT ? fin.optics.y : 0.0;
-        int depth = ray.depth + 1;
-        if (depth > TP2_MAX_DEPTH) { // children past the limit are plain gray
-            color += weight * (max(kr, 0.0) + max(kt, 0.0)) * gray;
-            continue;
-        }
-        float bailout = frame.limits.x;
-        if (weight * kr < bailout)
-            kr = 0.0; // pruned: too faint to matter (--bailout)
-        if (weight * kt < bailout)
-            kt = 0.0;
-        if (kr > 0.0 && sp < STACK_SIZE) {
-            rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
-            stack[sp++] = Ray(outside, r, back, weight * kr, depth);
-            ++ray_tally[TP2_STAT_REFLECTED];
-        }
-        if (kt > 0.0 && sp < STACK_SIZE) {
-            real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
-            real cosi = -dot(ray.dir, nf);
-            real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
-            if (k < 0.0) { // total internal reflection: the mirror direction
-                stack[sp++] = Ray(outside, ray.dir + 2.0 * cosi * nf, back, weight * kt, depth);
-            } else {
-                rvec3 t = normalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
-                stack[sp++] = Ray(p - offset, t, leaving(h.object, is_sphere, entering),
-                                  weight * kt, depth);
-            }
-            ++ray_tally[TP2_STAT_TRANSMITTED];
-        }
+    for (int iter = 0; iter < MAX_RAYS && live; ++iter) {
+        Ray first, second;
+        int children = trace_step(ray, area_shift, color, first, second);
+        if (children == 2 && sp < STACK_SIZE)
+            pending[sp++] = second;
+        if (children > 0)
+            ray = first;
+        else if (sp > 0)
+            ray = pending[--sp];
+        else
+            live = false;
     }
     return color;
 }
