@@ -9,9 +9,10 @@ the chart is drawn, so --no-chart runs on the standard library alone.
 For each scene (default: scenes/*.txt in the repository, then
 tests/stress/far-small-sphere.txt, tests/stress/mirror-corridor.txt,
 tests/stress/inside-glass.txt and tests/render/effects.txt; --scenes to
-override) and each setting, precision float or double x samples per pixel
-1, 4, 16, 64 (--spp-list), tp2 renders the scene as
-    tp2 --quiet --precision P --spp N <scene> <out>.pfm W H
+override) and each setting, float (the default: rays fainter than 1/255
+pruned), float-exact (--bailout 0) or double (never pruned) x samples per
+pixel 1, 4, 16, 64 (--spp-list), tp2 renders the scene as
+    tp2 --quiet SETTING-OPTIONS --spp N <scene> <out>.pfm W H
 (--size W H, default 200 150). Each run is timed as whole-process wall
 time (time.perf_counter() around subprocess.run(): process start, Vulkan
 start-up, parsing, shader specialisation, rendering and writing the image
@@ -89,7 +90,14 @@ EXTRA_SCENES = ['tests/stress/far-small-sphere.txt',
                 'tests/stress/mirror-corridor.txt',
                 'tests/stress/inside-glass.txt',
                 'tests/render/effects.txt']
-PRECISIONS = ['float', 'double']
+# The settings compared, as tp2 options: the default (float, rays fainter
+# than 1/255 pruned), float with no pruning, and the double reference.
+SETTINGS = {
+    'float': ['--precision', 'float'],
+    'float-exact': ['--precision', 'float', '--bailout', '0'],
+    'double': ['--precision', 'double'],
+}
+PRECISIONS = list(SETTINGS)
 
 
 def default_scenes():
@@ -118,10 +126,11 @@ def make_env(no_icd):
 
 
 def render(args, env, scene, precision, spp, out, size=None):
-    """Run tp2 once; return its wall time in seconds."""
+    """Run tp2 once with setting `precision` (a key of SETTINGS); return its
+    wall time in seconds."""
     size = size or args.size
-    cmd = [args.tp2, '--quiet', '--precision', precision, '--spp', str(spp),
-           scene, out, str(size[0]), str(size[1])]
+    cmd = ([args.tp2, '--quiet'] + SETTINGS[precision] + ['--spp', str(spp),
+           scene, out, str(size[0]), str(size[1])])
     t0 = time.perf_counter()
     r = subprocess.run(cmd, env=env, stdout=subprocess.PIPE,
                        stderr=subprocess.PIPE, timeout=args.timeout)
@@ -184,7 +193,8 @@ def draw_chart(rows, path, title):
     for i, sc in enumerate(scenes):
         c = cmap(i % cmap.N)
         handles.append(Line2D([], [], color=c, linewidth=2, label=sc))
-        for prec, ls, mk in (('float', '-', 'o'), ('double', '--', 's')):
+        for prec, ls, mk in (('float', '-', 'o'), ('float-exact', ':', '^'),
+                             ('double', '--', 's')):
             pts = sorted((r for r in rows if r['scene'] == sc and
                           r['precision'] == prec), key=lambda r: r['spp'])
             if not pts:
@@ -212,11 +222,13 @@ def draw_chart(rows, path, title):
     ax.set_title(title, fontsize=10)
     ax.grid(True, which='both', linewidth=0.4, alpha=0.5)
     handles += [Line2D([], [], color='0.2', linestyle='-', marker='o',
-                       markersize=4, label='float'),
+                       markersize=4, label='float (default: bailout 1/255)'),
+                Line2D([], [], color='0.2', linestyle=':', marker='^',
+                       markersize=4, label='float, --bailout 0'),
                 Line2D([], [], color='0.2', linestyle='--', marker='s',
-                       markersize=4, label='double')]
+                       markersize=4, label='double (no pruning)')]
     if any_zero:
-        handles.append(Line2D([], [], color='0.2', linestyle=':',
+        handles.append(Line2D([], [], color='0.2', linestyle='none',
                               marker='s', markersize=6,
                               markerfacecolor='white',
                               label='mae 0 (drawn at %g)' % floor))
