@@ -44,8 +44,11 @@ struct renderer {
 /* The shader counts rays in 64 bits, as (low, high) pairs of uints. */
 #define TP2_STATS_BYTES (2 * TP2_STAT_COUNT * sizeof(uint32_t))
 
+/* What one dispatch covers: a band of rows, and one sample per pixel. */
 struct tile_push {
     int32_t origin[2];
+    int32_t sample;
+    int32_t pad;
 };
 
 static int create_buffers(struct renderer *r, const struct packed_scene *p,
@@ -234,9 +237,9 @@ static int create_commands(struct renderer *r)
 }
 
 /* Records, submits and waits for one tile's dispatch. */
-static int run_tile(struct renderer *r, int x, int y, int w, int h)
+static int run_tile(struct renderer *r, int x, int y, int w, int h, int sample)
 {
-    struct tile_push push = {{x, y}};
+    struct tile_push push = {{x, y}, sample, 0};
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
@@ -250,15 +253,17 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h)
                        0, sizeof push, &push);
     vkCmdDispatch(r->cmd, (uint32_t)(w + TP2_GROUP_X - 1) / TP2_GROUP_X,
                   (uint32_t)(h + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
-    /* Make the shader's writes visible to the host's reads after the fence. */
+    /* Make the shader's writes visible to the next sample's dispatch, which
+     * adds to them, and to the host's reads after the fence. */
     VkMemoryBarrier barrier = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
-        .dstAccessMask = VK_ACCESS_HOST_READ_BIT,
+        .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                         VK_ACCESS_HOST_READ_BIT,
     };
     vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                         VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, NULL,
-                         0, NULL);
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                         0, 1, &barrier, 0, NULL, 0, NULL);
     TP2_VK_TRY(vkEndCommandBuffer(r->cmd));
     VkSubmitInfo submit = {
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
@@ -272,31 +277,39 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h)
 }
 
 /* Rows per tile: tiles are bands of whole rows, a multiple of the
- * workgroup's height, each about TP2_TILE_SAMPLES camera samples on a GPU
- * and a TP2_CPU_TILES-th of the image on a CPU. */
+ * workgroup's height, each about TP2_TILE_SAMPLES pixels on a GPU and a
+ * TP2_CPU_TILES-th of all the samples on a CPU (so the whole image once
+ * there are that many samples per pixel). */
 static int tile_rows(const struct vkc *vk, int width, int height, int samples)
 {
-    double row = (double)width * samples;
     double budget = TP2_TILE_SAMPLES;
-    if (vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-        row * height / TP2_CPU_TILES > budget)
-        budget = row * height / TP2_CPU_TILES;
-    int rows = (int)ceil(budget / row);
+    if (vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        budget = fmax(budget, (double)width * height * samples / TP2_CPU_TILES);
+    int rows = (int)ceil(budget / width);
     rows += (TP2_GROUP_Y - rows % TP2_GROUP_Y) % TP2_GROUP_Y;
-    return rows;
+    return rows < height ? rows : height;
 }
 
+/* Renders every sample of every pixel: one dispatch per band and sample,
+ * each adding its sample's share to the pixels. One sample per dispatch
+ * also keeps each invocation's work bounded: lavapipe ends a shader
+ * invocation's loops after 65535 iterations in all (gallivm's
+ * LP_MAX_TGSI_LOOP_ITERATIONS), which 64 samples of a glass scene in one
+ * invocation overran, silently. */
 static int run_tiles(struct renderer *r, int width, int height, int samples,
                      bool show_progress)
 {
     struct progress bar;
     progress_start(&bar, show_progress);
     int rows = tile_rows(&r->vk, width, height, samples);
+    int bands = (height + rows - 1) / rows;
     int rc = 0;
-    for (int y = 0; y < height && rc == 0; y += rows) {
-        rc = run_tile(r, 0, y, width, height - y < rows ? height - y : rows);
-        progress_update(&bar, (double)(y + rows < height ? y + rows : height) / height);
-    }
+    for (int s = 0; s < samples && rc == 0; s++)
+        for (int band = 0; band < bands && rc == 0; band++) {
+            int y = band * rows;
+            rc = run_tile(r, 0, y, width, height - y < rows ? height - y : rows, s);
+            progress_update(&bar, (double)(s * bands + band + 1) / ((double)samples * bands));
+        }
     progress_finish(&bar);
     return rc;
 }

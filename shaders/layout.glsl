@@ -55,11 +55,14 @@ layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentB
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };
 layout(std430, set = 0, binding = TP2_BINDING_OBJECTS) readonly buffer ObjectBuf { Object objects[]; };
 layout(std430, set = 0, binding = TP2_BINDING_BVH) readonly buffer BvhBuf { BvhNode nodes[]; };
-layout(std430, set = 0, binding = TP2_BINDING_IMAGE) writeonly buffer ImageBuf { vec4 pixels[]; };
+layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf { uint ray_counts[2 * TP2_STAT_COUNT]; }; // (low, high) pairs
 
-// The tile this dispatch covers, in pixels.
-layout(push_constant) uniform Tile { ivec2 tile_origin; };
+// What this dispatch covers: a band of pixels, and which of their samples.
+layout(push_constant) uniform Tile {
+    ivec2 tile_origin;
+    int sample_index;
+};
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
 layout(constant_id = TP2_SPEC_REFRACT) const bool HAS_REFRACT = true;

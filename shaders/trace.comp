@@ -1,22 +1,23 @@
 #version 450
 // trace.comp: Whitted ray tracing of one pixel per invocation (SPEC 4).
 //
-// Recursion is replaced by a depth-first walk over an explicit stack of
-// pending rays, each with the weight (product of kr, kt and fog
-// transmittance) it contributes with. Built twice: TP2_DOUBLE selects
+// Recursion is replaced by a depth-first walk: the loop follows each ray's
+// first child and parks the second on an explicit stack; every ray carries
+// the weight (product of kr, kt and fog transmittance) it contributes
+// with. Built twice: TP2_DOUBLE selects
 // double-precision geometry (the reference image); lighting stays in float.
 // Specialization constants (layout.glsl) strip what the scene does not use.
 #extension GL_GOOGLE_include_directive : require
 
 #include "tp2_shared.h"
 
+// TP2_REL_EPS: offset of a new ray's origin off its surface, relative to
+// the scale of the hit point: 16 ulps, against coincident surfaces
+// (self-hits are ruled out by Start, not by this).
 #ifdef TP2_DOUBLE
 #define real double
 #define rvec3 dvec3
 #define rvec4 dvec4
-// Offset of a new ray's origin off its surface, relative to the scale of
-// the hit point: 16 ulps, against coincident surfaces (self-hits are ruled
-// out by Start, not by this).
 #define TP2_REL_EPS 5.6843418860808015e-14LF // 2^-44
 #else
 #define real float
@@ -168,19 +169,18 @@ void main()
     for (int i = 0; i < TP2_STAT_COUNT; ++i)
         ray_tally[i] = 0u;
 
-    vec2 shift = random2(pixel, 0u);
-    vec3 sum = vec3(0.0);
-    for (int s = 0; s < SAMPLES; ++s) {
-        // One sample: the pixel center; several: stratified in the pixel.
-        vec2 offset = SAMPLES == 1 ? vec2(0.5) : lattice2(s, SAMPLES, frame.sampling.x, shift);
-        real x = (2.0 * (real(pixel.x) + real(offset.x))) / real(width) - 1.0;
-        real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
-        rvec3 origin, dir;
-        camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
-        sum += trace(origin, dir, random2(pixel, uint(2 * s + 2)));
-    }
-    ray_tally[TP2_STAT_CAMERA] = uint(SAMPLES);
-    pixels[pixel.y * width + pixel.x] = vec4(sum / float(SAMPLES), 1.0);
+    // Sample sample_index of SAMPLES: the pixel center when there is one,
+    // else stratified in the pixel. Each adds its share to the pixel.
+    int s = sample_index;
+    vec2 offset = SAMPLES == 1 ? vec2(0.5) : lattice2(s, SAMPLES, frame.sampling.x, random2(pixel, 0u));
+    real x = (2.0 * (real(pixel.x) + real(offset.x))) / real(width) - 1.0;
+    real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
+    rvec3 origin, dir;
+    camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
+    vec3 share = trace(origin, dir, random2(pixel, uint(2 * s + 2))) / float(SAMPLES);
+    int index = pixel.y * width + pixel.x;
+    pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
+    ray_tally[TP2_STAT_CAMERA] = 1u;
 
     if (COUNT_RAYS)
         for (int i = 0; i < TP2_STAT_COUNT; ++i) {

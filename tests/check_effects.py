@@ -173,6 +173,33 @@ def case_bailout(c):
         c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
 
 
+def slab_value(z, direction, depth, planes=(-3, -1, 1, 3)):
+    """SPEC 4 for a ray along z between the planes z = planes, each with ka 1,
+    kr = kt = 0.5, ior 1, under ambient 0.2: what the ray returns."""
+    ahead = [p for p in planes if (p - z) * direction > 0]
+    if not ahead:
+        return 0.5
+    hit = min(ahead, key=lambda p: abs(p - z))
+    if depth + 1 > 10:
+        return 0.2 + 1.0 * 0.5
+    return (0.2 + 0.5 * slab_value(hit, -direction, depth + 1, planes)
+            + 0.5 * slab_value(hit, direction, depth + 1, planes))
+
+
+def case_many_samples_full_trees(c):
+    """Every sample of a pixel traces a full tree of reflections and
+    transmissions between four planes: 64 samples must give the value of one
+    (lavapipe stops a shader invocation's loops after 65535 iterations in
+    all, which 64 such samples in one invocation used to overrun)."""
+    slabs = (CAMERA + "1\n0 0 0 0.2 0.2 0.2 0 0 0\n1\nsolid 1 1 1\n1\n1 0 0 1 0.5 0.5 1\n"
+             "4\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n0 0 plane 0 0 1 3\n"
+             "0 0 plane 0 0 -1 3\n")
+    want = slab_value(0, -1, 0)
+    for spp in ("1", "64"):
+        center = c.image(slabs, (5, 5), ["--bailout", "0", "--spp", spp], name="slabs")[2][2]
+        c.expect(approx(center, (want,) * 3, 1e-4), f"spp {spp}: center {center}, want {want}")
+
+
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop."""
     scene = os.path.join(HERE, "render", "many-spheres.txt")
