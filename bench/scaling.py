@@ -80,10 +80,11 @@ def make_scene(n, seed):
 def measure(args, env, prog, scene, w, h, work):
     out = os.path.join(work, '%s.ppm' % prog)
     if prog == 'tp2':
-        cmd, e = [args.tp2, scene, out, str(w), str(h)], env
+        cmd = [args.tp2, '--bailout', repr(args.bailout), scene, out, str(w), str(h)]
+        e = env
     else:
         pov = os.path.splitext(scene)[0] + '.pov'
-        extra = bench.convert(scene, w, h, pov)
+        extra = bench.convert(scene, w, h, pov, args.bailout)
         cmd, e = bench.pov_cmd(args.povray, pov, out, w, h, args.threads,
                                extra), None
     times, status = [], 'ok'
@@ -191,6 +192,8 @@ def main(argv=None):
                     help='seconds per run before it is killed (default 300)')
     ap.add_argument('--tp2', default=os.path.join(REPO, 'build', 'tp2'))
     ap.add_argument('--povray', default='povray')
+    ap.add_argument('--bailout', type=float, default=1 / 255,
+                    help="both programs' least traced ray weight (default 1/255)")
     ap.add_argument('--threads', type=int, default=2)
     ap.add_argument('--no-icd', action='store_true')
     ap.add_argument('--csv', default=os.path.join(REPO, 'docs', 'bench',
