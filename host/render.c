@@ -41,8 +41,10 @@ struct renderer {
     VkFence fence;
 };
 
-/* The shader counts rays in 64 bits, as (low, high) pairs of uints. */
-#define TP2_STATS_BYTES (2 * TP2_STAT_COUNT * sizeof(uint32_t))
+/* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
+ * then the number of SIMD vectors that came near lavapipe's loop limit. */
+#define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + 1)
+#define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
 /* What one dispatch covers: a band of rows, and one sample per pixel. */
 struct tile_push {
@@ -72,16 +74,31 @@ static void read_ray_counts(const uint32_t *words, uint64_t rays[TP2_STAT_COUNT]
         rays[i] = (uint64_t)words[2 * i + 1] << 32 | words[2 * i];
 }
 
+/* Says so when pixels may have been cut short by lavapipe's loop limit:
+ * the image is still written, but the user must know. */
+static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
+{
+    uint32_t vectors = words[2 * TP2_STAT_COUNT];
+    if (vectors > 0)
+        fprintf(stderr, "tp2: warning: %u group%s of pixels traced so many rays that "
+                        "'%s' may have cut them short (it stops a shader's loops "
+                        "after 65535 iterations); prune faint rays (--bailout, "
+                        "default 1/255) or render on a GPU\n",
+                vectors, vectors == 1 ? "" : "s", vk->props.deviceName);
+}
+
 /* The specialization constants of tp2_shared.h, in id order. */
 struct spec_values {
     VkBool32 flags[TP2_SPEC_SAMPLES];
     int32_t samples;
     VkBool32 spheres;
     VkBool32 bvh;
+    VkBool32 loop_guard;
 };
 
 static void spec_values(const struct scene_features *f, bool count_rays,
-                        struct spec_values *v, VkSpecializationMapEntry *map)
+                        bool loop_guard, struct spec_values *v,
+                        VkSpecializationMapEntry *map)
 {
     *v = (struct spec_values){
         .flags = {
@@ -97,6 +114,7 @@ static void spec_values(const struct scene_features *f, bool count_rays,
         .samples = f->samples,
         .spheres = f->spheres,
         .bvh = f->bvh,
+        .loop_guard = loop_guard,
     };
     for (uint32_t id = 0; id < TP2_SPEC_SAMPLES; id++)
         map[id] = (VkSpecializationMapEntry){id, (uint32_t)(id * sizeof(VkBool32)),
@@ -107,6 +125,25 @@ static void spec_values(const struct scene_features *f, bool count_rays,
         TP2_SPEC_SPHERES, offsetof(struct spec_values, spheres), sizeof(VkBool32)};
     map[TP2_SPEC_BVH] = (VkSpecializationMapEntry){
         TP2_SPEC_BVH, offsetof(struct spec_values, bvh), sizeof(VkBool32)};
+    map[TP2_SPEC_LOOP_GUARD] = (VkSpecializationMapEntry){
+        TP2_SPEC_LOOP_GUARD, offsetof(struct spec_values, loop_guard), sizeof(VkBool32)};
+}
+
+/* Only CPU devices (lavapipe) cut long shader loops short; the guard's
+ * count needs subgroup arithmetic in compute shaders. */
+static bool needs_loop_guard(const struct vkc *vk)
+{
+    VkPhysicalDeviceSubgroupProperties sub = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
+    };
+    VkPhysicalDeviceProperties2 props = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+        .pNext = &sub,
+    };
+    vkGetPhysicalDeviceProperties2(vk->physical, &props);
+    return vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+           (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+           (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
 }
 
 static int create_pipeline(struct renderer *r, bool use_double,
@@ -148,7 +185,7 @@ static int create_pipeline(struct renderer *r, bool use_double,
     TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
     struct spec_values values;
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(features, count_rays, &values, map);
+    spec_values(features, count_rays, needs_loop_guard(&r->vk), &values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
@@ -388,6 +425,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     double t4 = clock_seconds();
     memcpy(rgba, r.buffers[TP2_BINDING_IMAGE].mapped, (size_t)image_size);
     read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
+    warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = t1 - t0;
     stats->upload = t2 - t1;
     stats->pipeline = t3 - t2;

@@ -81,6 +81,7 @@ rvec3 safe_inverse(rvec3 d)
 void hit_spheres(int first, int count, rvec3 o, rvec3 d, Start start, inout Hit h)
 {
     for (int i = first; i < first + count; ++i) {
+        TP2_STEP();
         if (i == start.skip)
             continue;
         real t = hit_sphere(o, d, objects[i].geom, i == start.far_only);
@@ -108,6 +109,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
         int node = box_entry(nodes[0].lo, nodes[0].hi, o, inv_d, h.t) < NO_HIT ? 0 : -1;
         // Each node is visited at most once: the loop is bounded by their count.
         for (int visit = 0; visit < frame.geometry.z && node >= 0; ++visit) {
+            TP2_STEP();
             BvhNode n = nodes[node];
             node = -1;
             if (n.count > 0) {
@@ -129,14 +131,17 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
                 }
             }
             // Resume at the nearest pending node still closer than the hit.
-            for (; node < 0 && sp > 0; --sp)
+            for (; node < 0 && sp > 0; --sp) {
+                TP2_STEP();
                 if (stack_t[sp - 1] < h.t)
                     node = stack_node[sp - 1];
+            }
         }
     }
     if (HAS_PLANES) {
         int end = frame.geometry.x + frame.geometry.y;
         for (int i = frame.geometry.x; i < end; ++i) {
+            TP2_STEP();
             real t = i == start.skip ? NO_HIT : hit_plane(o, d, objects[i].geom);
             if (t < h.t) {
                 h = Hit(t, i);

@@ -56,7 +56,11 @@ layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBu
 layout(std430, set = 0, binding = TP2_BINDING_OBJECTS) readonly buffer ObjectBuf { Object objects[]; };
 layout(std430, set = 0, binding = TP2_BINDING_BVH) readonly buffer BvhBuf { BvhNode nodes[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
-layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf { uint ray_counts[2 * TP2_STAT_COUNT]; }; // (low, high) pairs
+// Ray counters as (low, high) pairs, then the vectors near lavapipe's limit.
+layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf {
+    uint ray_counts[2 * TP2_STAT_COUNT];
+    uint near_loop_limit;
+};
 
 // What this dispatch covers: a band of pixels, and which of their samples.
 layout(push_constant) uniform Tile {
@@ -75,3 +79,9 @@ layout(constant_id = TP2_SPEC_STATS) const bool COUNT_RAYS = false;
 layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
 layout(constant_id = TP2_SPEC_SPHERES) const bool HAS_SPHERES = true;
 layout(constant_id = TP2_SPEC_BVH) const bool USE_BVH = true;
+layout(constant_id = TP2_SPEC_LOOP_GUARD) const bool LOOP_GUARD = false;
+
+// One iteration of some loop: one lane per SIMD vector counts it, so the
+// vector's total is the sum over its lanes (see TP2_LOOP_LIMIT_NEAR).
+uint loop_steps = 0u;
+#define TP2_STEP() if (LOOP_GUARD && subgroupElect()) ++loop_steps

@@ -86,11 +86,13 @@ vec3 local_color(Finish fin, vec3 pig, rvec3 p, rvec3 nf, rvec3 view,
     // A finish with kd = ks = 0 (a pure mirror or glass) needs no shadow rays.
     int nl = fin.phong.y == 0.0 && fin.phong.z == 0.0 ? 0 : frame.counts.z;
     for (int i = 0; i < nl; ++i) {
+        TP2_STEP();
         Light light = lights[i];
         if (HAS_AREA && i == frame.sampling.y) {
             int n = frame.sampling.z;
             vec3 color = light.color.rgb / float(n);
             for (int j = 0; j < n; ++j) {
+                TP2_STEP();
                 rvec3 q = light.pos.xyz + real(frame.area.x) * rvec3(sphere_point(j, n, area_shift));
                 c += light_term(q, color, light.att, fin, pig, p, nf, view, from, shadow_rays);
             }

@@ -29,7 +29,8 @@
 #define TP2_SPEC_SAMPLES 8   /* int: samples per pixel */
 #define TP2_SPEC_SPHERES 9   /* bool: the scene has spheres */
 #define TP2_SPEC_BVH 10      /* bool: spheres through the BVH, else a loop */
-#define TP2_SPEC_COUNT 11
+#define TP2_SPEC_LOOP_GUARD 11 /* bool: count loop steps (lavapipe's limit) */
+#define TP2_SPEC_COUNT 12
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0
@@ -37,6 +38,14 @@
 #define TP2_STAT_REFLECTED 2
 #define TP2_STAT_TRANSMITTED 3
 #define TP2_STAT_COUNT 4
+
+/* lavapipe ends all loops of a shader invocation (a SIMD vector of lanes)
+ * after 65535 iterations in total, silently (Mesa's gallivm,
+ * LP_MAX_TGSI_LOOP_ITERATIONS). On CPU devices the shader counts its loop
+ * iterations per vector and flags vectors that got this close; the margin
+ * covers iterations it does not see (cut-short vectors were measured to
+ * count 63500-64600). */
+#define TP2_LOOP_LIMIT_NEAR 60000
 
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32

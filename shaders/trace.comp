@@ -8,6 +8,8 @@
 // double-precision geometry (the reference image); lighting stays in float.
 // Specialization constants (layout.glsl) strip what the scene does not use.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 #include "tp2_shared.h"
 
@@ -131,6 +133,7 @@ vec3 trace(rvec3 eye, rvec3 dir, vec2 area_shift)
     bool live = true; // `ray` is still to be traced
     vec3 color = vec3(0.0);
     for (int iter = 0; iter < MAX_RAYS && live; ++iter) {
+        TP2_STEP();
         Ray first, second;
         int children = trace_step(ray, area_shift, color, first, second);
         if (children == 2 && sp < STACK_SIZE)
@@ -182,6 +185,11 @@ void main()
     pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
     ray_tally[TP2_STAT_CAMERA] = 1u;
 
+    if (LOOP_GUARD) {
+        uint vector_steps = subgroupAdd(loop_steps);
+        if (vector_steps >= TP2_LOOP_LIMIT_NEAR && subgroupElect())
+            atomicAdd(near_loop_limit, 1u);
+    }
     if (COUNT_RAYS)
         for (int i = 0; i < TP2_STAT_COUNT; ++i) {
             // 64-bit counters from 32-bit atomics: carry into the high word.

@@ -200,6 +200,27 @@ def case_many_samples_full_trees(c):
         c.expect(approx(center, (want,) * 3, 1e-4), f"spp {spp}: center {center}, want {want}")
 
 
+def case_loop_limit_warning(c):
+    """A sample whose unpruned tree needs more loop iterations than lavapipe
+    allows one invocation (about 460 rays, each testing 84 objects for
+    itself and for 8 lights, in a sphere loop: --bvh-min keeps the BVH out)
+    is reported, not silently cut; the pruned default stays quiet."""
+    spheres = "".join(f"0 0 sphere {100 + 3 * i} 0 0 1\n" for i in range(80))
+    lights = "".join(f"{x} {y} {z} 0.1 0.1 0.1 1 0 0\n"
+                     for x in (-1, 1) for y in (-1, 1) for z in (-0.5, 0.5))
+    text = (CAMERA + "9\n0 0 0 0.2 0.2 0.2 0 0 0\n" + lights + "1\nsolid 1 1 1\n"
+            "1\n1 0.1 0 1 0.5 0.5 1\n84\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n"
+            "0 0 plane 0 0 1 3\n0 0 plane 0 0 -1 3\n" + spheres)
+    scene = scene_file(c.tmp, "deep.txt", text)
+    out = os.path.join(c.tmp, "deep.ppm")
+    status, _, err = run(c.tp2, ["--bvh-min", "1000", "--bailout", "0", scene, out, "8", "8"])
+    c.expect(status == 0 and os.path.exists(out), f"exit {status}: {err!r}")
+    c.expect(err.startswith("tp2: warning: ") and "may have cut them short" in err,
+             f"no loop-limit warning: {err!r}")
+    status, _, err = run(c.tp2, ["--bvh-min", "1000", scene, out, "8", "8"])
+    c.expect(status == 0 and err == "", f"pruned: exit {status}, stderr {err!r}")
+
+
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop."""
     scene = os.path.join(HERE, "render", "many-spheres.txt")

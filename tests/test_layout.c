@@ -474,8 +474,9 @@ static void check_image(const struct spv *m)
           "pixels[]: ArrayStride %ld, want %zu", stride, 4 * sizeof(float));
 }
 
-/* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT] at
- * TP2_BINDING_STATS, read by render.c as that many uint32_t. */
+/* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT], then uint
+ * near_loop_limit, at TP2_BINDING_STATS, read by render.c as that many
+ * uint32_t words. */
 static void check_stats(const struct spv *m)
 {
     uint32_t block = 0;
@@ -490,13 +491,21 @@ static void check_stats(const struct spv *m)
     check(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, m->label,
           "buffer StatsBuf: DescriptorSet 0");
     size_t def = spv_def(m, block);
-    size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3
+    size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 4
                      ? spv_def(m, m->w[def + 2])
                      : 0;
     int ok = spv_op(m, arr) == OP_TYPE_ARRAY && spv_wc(m, arr) >= 4;
-    check(ok, m->label, "buffer StatsBuf: one fixed-size array member");
+    check(ok, m->label, "buffer StatsBuf: a fixed-size array, then one more member");
     if (!ok)
         return;
+    enum kind last_kind = KIND_OTHER;
+    size_t last_size = spv_type_size(m, m->w[def + 3], &last_kind);
+    check(last_size == sizeof(uint32_t) && last_kind == KIND_U32, m->label,
+          "near_loop_limit: a uint");
+    long last_offset = spv_member_decoration(m, block, 1, DEC_OFFSET);
+    check(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), m->label,
+          "near_loop_limit: Offset %ld, want %zu (the word after ray_counts)",
+          last_offset, 2 * TP2_STAT_COUNT * sizeof(uint32_t));
     enum kind kind = KIND_OTHER;
     size_t size = spv_type_size(m, m->w[arr + 2], &kind);
     check(size == sizeof(uint32_t) && kind == KIND_U32, m->label,
