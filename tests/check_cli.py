@@ -121,6 +121,41 @@ def case_atomic_overwrite(c):
     c.expect(sorted(os.listdir(c.tmp)) == ["out.ppm"], f"left {os.listdir(c.tmp)}")
 
 
+def run_on_terminal(tp2, args):
+    """Runs tp2 with a pseudo-terminal as stderr; returns (status, what it
+    wrote there)."""
+    import pty
+    import subprocess
+    main, side = pty.openpty()
+    p = subprocess.Popen([tp2] + args, stderr=side, stdout=subprocess.DEVNULL)
+    os.close(side)
+    chunks = []
+    while True:
+        try:
+            data = os.read(main, 4096)
+        except OSError:  # the terminal closed with the process
+            break
+        if not data:
+            break
+        chunks.append(data)
+    os.close(main)
+    return p.wait(timeout=600), b"".join(chunks).decode("utf-8", "replace")
+
+
+def case_progress_bar(c):
+    """On a terminal a render that takes over a second shows a progress bar
+    and clears it; --quiet and a pipe show nothing."""
+    heavy = [os.path.join(HERE, "..", "scenes", "refraction.txt"), c.out(), "400", "300",
+             "--bailout", "0", "--spp", "8"]
+    status, err = run_on_terminal(c.tp2, heavy[:1] + heavy[1:])
+    c.expect(status == 0, f"exit {status}: {err!r}")
+    c.expect("tp2: [" in err and "%" in err, f"no progress bar on a terminal: {err!r}")
+    status, err = run_on_terminal(c.tp2, ["--quiet"] + heavy)
+    c.expect(status == 0 and err == "", f"--quiet on a terminal: exit {status}, {err!r}")
+    status, _, err = run(c.tp2, heavy)
+    c.expect(status == 0 and err == "", f"a pipe: exit {status}, {err!r}")
+
+
 def case_formats(c):
     """.png and .pfm outputs are written with their signatures."""
     for name, magic in (("o.png", b"\x89PNG"), ("o.pfm", b"PF\n"), ("o.PPM", b"P6\n")):
