@@ -12,23 +12,7 @@
 
 #include "bvh.h"
 
-static int passed, failed;
-
-/* Records one check; prints the message only when it fails. */
-static void expect(bool ok, const char *fmt, ...)
-{
-    if (ok) {
-        passed++;
-        return;
-    }
-    failed++;
-    va_list ap;
-    va_start(ap, fmt);
-    fputs("FAIL: ", stdout);
-    vprintf(fmt, ap);
-    fputs("\n", stdout);
-    va_end(ap);
-}
+#include "unit.h"
 
 /* splitmix64: seeded, so every run sees the same spheres and rays. */
 static uint64_t rng_state;
@@ -690,6 +674,5 @@ int main(void)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i], 1000 + i);
     check_quality();
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed != 0;
+    return unit_report();
 }

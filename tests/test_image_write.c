@@ -22,19 +22,7 @@
 
 #include "image_write.h"
 
-static int passed, failed;
-
-static void check(int ok, const char *what, int line)
-{
-    if (ok) {
-        passed++;
-        return;
-    }
-    failed++;
-    printf("FAIL line %d: %s\n", line, what);
-}
-
-#define CHECK(cond) check((cond) != 0, #cond, __LINE__)
+#include "unit.h"
 
 /* The test image: W x H, level(x, y, c) distinct for every pixel and
  * channel, none equal to its mirror or transpose. */
@@ -128,10 +116,10 @@ static void check_levels(const unsigned char *rgb, const char *what, int line)
                 if (rgb_at(rgb, x, y, c) != level(x, y, c)) {
                     printf("  %s: (%d,%d) channel %d is %d, want %d\n", what, x,
                            y, c, rgb_at(rgb, x, y, c), level(x, y, c));
-                    check(0, what, line);
+                    expect(0, "line %d: %s", line, what);
                     return;
                 }
-    check(1, what, line);
+    expect(1, "line %d: %s", line, what);
 }
 
 /* The little-endian float at p, independent of the host's byte order. */
@@ -432,7 +420,7 @@ static void test_quantize_files(void)
                 ok = 0;
             }
         }
-        check(ok, names[n], __LINE__);
+        expect(ok, "line %d: %s", __LINE__, names[n]);
         free(rgb);
     }
     char p[256];
@@ -444,7 +432,7 @@ static void test_quantize_files(void)
     int ok = f != NULL;
     for (int i = 0; ok && i < W * H * 3; i++)
         ok = same_float(f[i], rgba[(i / 3) * 4 + i % 3]);
-    check(ok, "q.pfm: raw floats, unclamped, NaN kept", __LINE__);
+    expect(ok, "line %d: %s", __LINE__, "q.pfm: raw floats, unclamped, NaN kept");
     free(f);
 }
 
@@ -485,7 +473,7 @@ static void test_formats(const float *rgba)
     int ok = f != NULL;
     for (int i = 0; ok && i < W * H * 3; i++)
         ok = same_float(f[i], rgba[(i / 3) * 4 + i % 3]);
-    check(ok, "f.pfm floats, rows bottom to top", __LINE__);
+    expect(ok, "line %d: %s", __LINE__, "f.pfm floats, rows bottom to top");
     free(f);
 
     /* A new file gets the mode open(2) would give it, not mkstemp's 0600. */
@@ -516,7 +504,7 @@ static void test_replace(const float *rgba)
     int zero = rgb != NULL;
     for (int i = 0; zero && i < W * H * 3; i++)
         zero = rgb[i] == 0;
-    check(zero, "old inode untouched (replaced by rename)", __LINE__);
+    expect(zero, "line %d: %s", __LINE__, "old inode untouched (replaced by rename)");
     free(rgb);
     struct stat a, b;
     CHECK(stat(p, &a) == 0 && stat(old, &b) == 0 && a.st_ino != b.st_ino);
@@ -607,6 +595,5 @@ int main(void)
     CHECK(count_temps() == 0);
 
     remove_dir();
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return unit_report();
 }

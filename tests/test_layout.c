@@ -53,26 +53,7 @@ enum {
     SPV_MAGIC = 0x07230203,
 };
 
-static int passed, failed;
-
-/* Records one check; on failure prints FAIL with the shader and what. */
-static void check(int ok, const char *shader, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-
-static void check(int ok, const char *shader, const char *fmt, ...)
-{
-    if (ok) {
-        passed++;
-        return;
-    }
-    failed++;
-    va_list ap;
-    va_start(ap, fmt);
-    printf("FAIL %s: ", shader);
-    vprintf(fmt, ap);
-    putchar('\n');
-    va_end(ap);
-}
+#include "unit.h"
 
 /* One SPIR-V module: its words, checked once so every walk below may
  * trust the word counts. */
@@ -87,7 +68,7 @@ struct spv {
 static int spv_validate(const struct spv *m)
 {
     if (m->n < 5 || m->w[0] != SPV_MAGIC) {
-        check(0, m->label, "not a SPIR-V module (magic 0x%08x)",
+        expect(0, "%s: " "not a SPIR-V module (magic 0x%08x)", m->label,
               m->n ? (unsigned)m->w[0] : 0u);
         return -1;
     }
@@ -95,12 +76,12 @@ static int spv_validate(const struct spv *m)
     while (i < m->n) {
         uint32_t wc = m->w[i] >> 16;
         if (wc == 0 || wc > m->n - i) {
-            check(0, m->label, "bad word count %u at word %zu", (unsigned)wc, i);
+            expect(0, "%s: " "bad word count %u at word %zu", m->label, (unsigned)wc, i);
             return -1;
         }
         i += wc;
     }
-    check(1, m->label, "module well formed");
+    expect(1, "%s: " "module well formed", m->label);
     return 0;
 }
 
@@ -359,8 +340,7 @@ static void check_c_table(const char *label, const struct buffer *b)
         end = b->fields[k].offset + b->fields[k].size;
     }
     size_t rounded = (end + b->align - 1) / b->align * b->align;
-    check(ordered && rounded == b->size, label,
-          "struct %s: table fields in order and cover sizeof %zu (end %zu)",
+    expect(ordered && rounded == b->size, "%s: " "struct %s: table fields in order and cover sizeof %zu (end %zu)", label,
           b->c, b->size, end);
 }
 
@@ -369,31 +349,26 @@ static void check_struct(const struct spv *m, uint32_t id,
                          const struct buffer *b)
 {
     size_t def = spv_def(m, id);
-    check(spv_op(m, def) == OP_TYPE_STRUCT, m->label,
-          "%s: element of %s is a struct", b->glsl, b->block);
+    expect(spv_op(m, def) == OP_TYPE_STRUCT, "%s: " "%s: element of %s is a struct", m->label, b->glsl, b->block);
     if (spv_op(m, def) != OP_TYPE_STRUCT)
         return;
-    check(spv_named(m, id, b->glsl), m->label, "%s: element of %s is named %s",
+    expect(spv_named(m, id, b->glsl), "%s: " "%s: element of %s is named %s", m->label,
           b->glsl, b->block, b->glsl);
     size_t members = spv_wc(m, def) - 2;
-    check(members == b->nfields, m->label,
-          "%s: %zu members in SPIR-V, %zu fields in struct %s", b->glsl,
+    expect(members == b->nfields, "%s: " "%s: %zu members in SPIR-V, %zu fields in struct %s", m->label, b->glsl,
           members, b->nfields, b->c);
     for (size_t k = 0; k < members && k < b->nfields; k++) {
         const struct field *f = &b->fields[k];
         char name[64];
         spv_member_name(m, id, (uint32_t)k, name, sizeof name);
-        check(strcmp(name, f->name) == 0, m->label,
-              "%s member %zu is '%s', C field is '%s'", b->glsl, k, name,
+        expect(strcmp(name, f->name) == 0, "%s: " "%s member %zu is '%s', C field is '%s'", m->label, b->glsl, k, name,
               f->name);
         long off = spv_member_decoration(m, id, (uint32_t)k, DEC_OFFSET);
-        check(off >= 0 && (size_t)off == f->offset, m->label,
-              "%s.%s: Offset %ld, offsetof(struct %s, %s) %zu", b->glsl, name,
+        expect(off >= 0 && (size_t)off == f->offset, "%s: " "%s.%s: Offset %ld, offsetof(struct %s, %s) %zu", m->label, b->glsl, name,
               off, b->c, f->name, f->offset);
         enum kind kind = KIND_OTHER;
         size_t size = spv_type_size(m, m->w[def + 2 + k], &kind);
-        check(size == f->size && kind == f->kind, m->label,
-              "%s.%s: %zu bytes of kind '%c'; C field %zu bytes of kind '%c'",
+        expect(size == f->size && kind == f->kind, "%s: " "%s.%s: %zu bytes of kind '%c'; C field %zu bytes of kind '%c'", m->label,
               b->glsl, name, size, kind, f->size, f->kind);
     }
 }
@@ -404,27 +379,24 @@ static void check_buffer(const struct spv *m, const struct buffer *b)
     uint32_t block = 0;
     int count = 0;
     uint32_t var = spv_find_buffer(m, b->block, &block, &count);
-    check(count == 1, m->label,
-          "buffer %s: %d storage-buffer variables (optimised away?), want 1",
+    expect(count == 1, "%s: " "buffer %s: %d storage-buffer variables (optimised away?), want 1", m->label,
           b->block, count);
     if (count != 1)
         return;
     long binding = spv_decoration(m, var, DEC_BINDING);
-    check(binding == b->binding, m->label, "buffer %s: Binding %ld, want %ld",
+    expect(binding == b->binding, "%s: " "buffer %s: Binding %ld, want %ld", m->label,
           b->block, binding, b->binding);
     long set = spv_decoration(m, var, DEC_DESCRIPTOR_SET);
-    check(set == 0, m->label, "buffer %s: DescriptorSet %ld, want 0",
+    expect(set == 0, "%s: " "buffer %s: DescriptorSet %ld, want 0", m->label,
           b->block, set);
-    check(spv_decoration(m, block, DEC_BLOCK) == 1, m->label,
-          "buffer %s: decorated Block", b->block);
+    expect(spv_decoration(m, block, DEC_BLOCK) == 1, "%s: " "buffer %s: decorated Block", m->label, b->block);
 
     size_t def = spv_def(m, block);
     int ok = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3;
-    check(ok, m->label, "buffer %s: a block of exactly one member", b->block);
+    expect(ok, "%s: " "buffer %s: a block of exactly one member", m->label, b->block);
     if (!ok)
         return;
-    check(spv_member_decoration(m, block, 0, DEC_OFFSET) == 0, m->label,
-          "buffer %s: member at Offset 0", b->block);
+    expect(spv_member_decoration(m, block, 0, DEC_OFFSET) == 0, "%s: " "buffer %s: member at Offset 0", m->label, b->block);
     uint32_t member = m->w[def + 2];
     if (!b->array) {
         check_struct(m, member, b);
@@ -432,12 +404,11 @@ static void check_buffer(const struct spv *m, const struct buffer *b)
     }
     size_t arr = spv_def(m, member);
     ok = spv_op(m, arr) == OP_TYPE_RUNTIME_ARRAY && spv_wc(m, arr) >= 3;
-    check(ok, m->label, "buffer %s: member is a runtime array", b->block);
+    expect(ok, "%s: " "buffer %s: member is a runtime array", m->label, b->block);
     if (!ok)
         return;
     long stride = spv_decoration(m, member, DEC_ARRAY_STRIDE);
-    check(stride >= 0 && (size_t)stride == b->size, m->label,
-          "%s[]: ArrayStride %ld, sizeof(struct %s) %zu", b->glsl, stride,
+    expect(stride >= 0 && (size_t)stride == b->size, "%s: " "%s[]: ArrayStride %ld, sizeof(struct %s) %zu", m->label, b->glsl, stride,
           b->c, b->size);
     check_struct(m, m->w[arr + 2], b);
 }
@@ -449,29 +420,25 @@ static void check_image(const struct spv *m)
     uint32_t block = 0;
     int count = 0;
     uint32_t var = spv_find_buffer(m, "ImageBuf", &block, &count);
-    check(count == 1, m->label, "buffer ImageBuf: %d variables, want 1", count);
+    expect(count == 1, "%s: " "buffer ImageBuf: %d variables, want 1", m->label, count);
     if (count != 1)
         return;
     long binding = spv_decoration(m, var, DEC_BINDING);
-    check(binding == TP2_BINDING_IMAGE, m->label,
-          "buffer ImageBuf: Binding %ld, want %d", binding, TP2_BINDING_IMAGE);
-    check(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, m->label,
-          "buffer ImageBuf: DescriptorSet 0");
+    expect(binding == TP2_BINDING_IMAGE, "%s: " "buffer ImageBuf: Binding %ld, want %d", m->label, binding, TP2_BINDING_IMAGE);
+    expect(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, "%s: " "buffer ImageBuf: DescriptorSet 0", m->label);
     size_t def = spv_def(m, block);
     size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3
                      ? spv_def(m, m->w[def + 2])
                      : 0;
     int ok = spv_op(m, arr) == OP_TYPE_RUNTIME_ARRAY && spv_wc(m, arr) >= 3;
-    check(ok, m->label, "buffer ImageBuf: one runtime array member");
+    expect(ok, "%s: " "buffer ImageBuf: one runtime array member", m->label);
     if (!ok)
         return;
     enum kind kind = KIND_OTHER;
     size_t size = spv_type_size(m, m->w[arr + 2], &kind);
-    check(size == 4 * sizeof(float) && kind == KIND_F32, m->label,
-          "pixels[]: element is vec4");
+    expect(size == 4 * sizeof(float) && kind == KIND_F32, "%s: " "pixels[]: element is vec4", m->label);
     long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
-    check(stride == (long)(4 * sizeof(float)), m->label,
-          "pixels[]: ArrayStride %ld, want %zu", stride, 4 * sizeof(float));
+    expect(stride == (long)(4 * sizeof(float)), "%s: " "pixels[]: ArrayStride %ld, want %zu", m->label, stride, 4 * sizeof(float));
 }
 
 /* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT], then uint
@@ -482,43 +449,37 @@ static void check_stats(const struct spv *m)
     uint32_t block = 0;
     int count = 0;
     uint32_t var = spv_find_buffer(m, "StatsBuf", &block, &count);
-    check(count == 1, m->label, "buffer StatsBuf: %d variables, want 1", count);
+    expect(count == 1, "%s: " "buffer StatsBuf: %d variables, want 1", m->label, count);
     if (count != 1)
         return;
     long binding = spv_decoration(m, var, DEC_BINDING);
-    check(binding == TP2_BINDING_STATS, m->label,
-          "buffer StatsBuf: Binding %ld, want %d", binding, TP2_BINDING_STATS);
-    check(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, m->label,
-          "buffer StatsBuf: DescriptorSet 0");
+    expect(binding == TP2_BINDING_STATS, "%s: " "buffer StatsBuf: Binding %ld, want %d", m->label, binding, TP2_BINDING_STATS);
+    expect(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, "%s: " "buffer StatsBuf: DescriptorSet 0", m->label);
     size_t def = spv_def(m, block);
     size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 4
                      ? spv_def(m, m->w[def + 2])
                      : 0;
     int ok = spv_op(m, arr) == OP_TYPE_ARRAY && spv_wc(m, arr) >= 4;
-    check(ok, m->label, "buffer StatsBuf: a fixed-size array, then one more member");
+    expect(ok, "%s: " "buffer StatsBuf: a fixed-size array, then one more member", m->label);
     if (!ok)
         return;
     enum kind last_kind = KIND_OTHER;
     size_t last_size = spv_type_size(m, m->w[def + 3], &last_kind);
-    check(last_size == sizeof(uint32_t) && last_kind == KIND_U32, m->label,
-          "near_loop_limit: a uint");
+    expect(last_size == sizeof(uint32_t) && last_kind == KIND_U32, "%s: " "near_loop_limit: a uint", m->label);
     long last_offset = spv_member_decoration(m, block, 1, DEC_OFFSET);
-    check(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), m->label,
-          "near_loop_limit: Offset %ld, want %zu (the word after ray_counts)",
+    expect(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "%s: " "near_loop_limit: Offset %ld, want %zu (the word after ray_counts)", m->label,
           last_offset, 2 * TP2_STAT_COUNT * sizeof(uint32_t));
     enum kind kind = KIND_OTHER;
     size_t size = spv_type_size(m, m->w[arr + 2], &kind);
-    check(size == sizeof(uint32_t) && kind == KIND_U32, m->label,
-          "ray_counts[]: element is uint");
+    expect(size == sizeof(uint32_t) && kind == KIND_U32, "%s: " "ray_counts[]: element is uint", m->label);
     size_t len = spv_def(m, m->w[arr + 3]);
     long n = spv_op(m, len) == OP_CONSTANT && spv_wc(m, len) >= 4
                  ? (long)m->w[len + 3]
                  : -1;
-    check(n == 2 * TP2_STAT_COUNT, m->label, "ray_counts[]: %ld elements, want %d",
+    expect(n == 2 * TP2_STAT_COUNT, "%s: " "ray_counts[]: %ld elements, want %d", m->label,
           n, 2 * TP2_STAT_COUNT);
     long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
-    check(stride == (long)sizeof(uint32_t), m->label,
-          "ray_counts[]: ArrayStride %ld, want %zu", stride, sizeof(uint32_t));
+    expect(stride == (long)sizeof(uint32_t), "%s: " "ray_counts[]: ArrayStride %ld, want %zu", m->label, stride, sizeof(uint32_t));
 }
 
 /* Every storage buffer in the module: bindings exactly 0 .. COUNT - 1,
@@ -539,8 +500,7 @@ static void check_binding_set(const struct spv *m)
     int ok = stray == 0;
     for (int b = 0; b < TP2_BINDING_COUNT; b++)
         ok &= seen[b] == 1;
-    check(ok, m->label,
-          "storage buffers bound exactly once each at 0..%d (%d stray)",
+    expect(ok, "%s: " "storage buffers bound exactly once each at 0..%d (%d stray)", m->label,
           TP2_BINDING_COUNT - 1, stray);
 }
 
@@ -559,7 +519,7 @@ static void check_bindings(void)
         for (size_t j = 0; j < i; j++)
             ok &= b[i] != b[j];
     }
-    check(ok, "tp2_shared.h", "bindings distinct, 0..TP2_BINDING_COUNT-1");
+    expect(ok, "%s: " "bindings distinct, 0..TP2_BINDING_COUNT-1", "tp2_shared.h");
 }
 
 static void check_module(const struct spv *m, const struct buffer *buffers,
@@ -586,6 +546,5 @@ int main(void)
     check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0]);
     check_module(&d, double_buffers,
                  sizeof double_buffers / sizeof double_buffers[0]);
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed ? 1 : 0;
+    return unit_report();
 }

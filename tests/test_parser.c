@@ -10,19 +10,7 @@
 
 #include "scene_parse.h"
 
-static int passed, failed;
-
-static void check(int ok, const char *what, int line)
-{
-    if (ok) {
-        passed++;
-        return;
-    }
-    failed++;
-    printf("FAIL line %d: %s\n", line, what);
-}
-
-#define CHECK(cond) check((cond) != 0, #cond, __LINE__)
+#include "unit.h"
 
 static int vec_eq(const double *v, double x, double y, double z)
 {
@@ -46,7 +34,7 @@ static struct scene parse_ok(const char *text, int line)
     struct scene s;
     char err[512];
     int rc = scene_parse_text("t.txt", text, strlen(text), &s, err, sizeof err);
-    check(rc == 0, "parse succeeds", line);
+    expect(rc == 0, "line %d: parse succeeds", line);
     if (rc != 0)
         printf("  error: %s\n", err);
     return s;
@@ -555,6 +543,5 @@ int main(void)
     test_camera_errors();
     test_value_errors();
     test_directive_errors();
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed == 0 ? 0 : 1;
+    return unit_report();
 }
