@@ -233,22 +233,18 @@ static void path_in(char *out, size_t size, const char *name)
         out[0] = '\0'; /* cannot happen: dir is short, names are cut */
 }
 
-/* Number of entries in dir whose name contains ".tmp-". */
-static int count_temps(void)
+static int is_temp(const char *name)
 {
-    DIR *d = opendir(dir);
-    if (!d)
-        return -1;
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)))
-        n += strstr(e->d_name, ".tmp-") != NULL;
-    closedir(d);
-    return n;
+    return strstr(name, ".tmp-") != NULL;
 }
 
-/* Number of entries in dir other than . and .. */
-static int count_entries(void)
+static int is_entry(const char *name)
+{
+    return strcmp(name, ".") != 0 && strcmp(name, "..") != 0;
+}
+
+/* Number of entries in dir whose name passes keep, or -1. */
+static int count_names(int (*keep)(const char *name))
 {
     DIR *d = opendir(dir);
     if (!d)
@@ -256,7 +252,7 @@ static int count_entries(void)
     int n = 0;
     struct dirent *e;
     while ((e = readdir(d)))
-        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
+        n += keep(e->d_name) != 0;
     closedir(d);
     return n;
 }
@@ -516,7 +512,7 @@ static void test_replace(const float *rgba)
 static void test_failures(const float *rgba)
 {
     char p[256], msg[300];
-    int before = count_entries();
+    int before = count_names(is_entry);
 
     path_in(p, sizeof p, "missing/out.ppm");
     capture_begin();
@@ -528,7 +524,7 @@ static void test_failures(const float *rgba)
     free(err);
     path_in(p, sizeof p, "missing");
     CHECK(access(p, F_OK) != 0);
-    CHECK(count_entries() == before);
+    CHECK(count_names(is_entry) == before);
 
     /* Unknown format: fails after the temporary file exists. */
     path_in(p, sizeof p, "u.xyz");
@@ -539,8 +535,8 @@ static void test_failures(const float *rgba)
     CHECK(starts_with(err, "tp2: cannot write '"));
     free(err);
     CHECK(access(p, F_OK) != 0);
-    CHECK(count_temps() == 0);
-    CHECK(count_entries() == before);
+    CHECK(count_names(is_temp) == 0);
+    CHECK(count_names(is_entry) == before);
 
     /* Failing over an existing file leaves it as it was. */
     path_in(p, sizeof p, "keep.ppm");
@@ -568,9 +564,9 @@ static void test_failures(const float *rgba)
     free(err);
     struct stat st;
     CHECK(stat(p, &st) == 0 && S_ISDIR(st.st_mode));
-    CHECK(count_temps() == 0);
+    CHECK(count_names(is_temp) == 0);
     rmdir(p);
-    CHECK(count_entries() == before);
+    CHECK(count_names(is_entry) == before);
 }
 
 int main(void)
@@ -589,10 +585,10 @@ int main(void)
     test_quantize();
     test_formats(rgba);
     test_quantize_files();
-    CHECK(count_temps() == 0);
+    CHECK(count_names(is_temp) == 0);
     test_replace(rgba);
     test_failures(rgba);
-    CHECK(count_temps() == 0);
+    CHECK(count_names(is_temp) == 0);
 
     remove_dir();
     return unit_report();
