@@ -408,18 +408,23 @@ static int parse_pigments(struct parser *p)
     return 0;
 }
 
+/* `ka kd ks n kr kt ior`, or the short form `ka kd ks n kr` of other
+ * courses' files (SPEC 3): kr is last when the next token begins on a later
+ * line, and then kt = 0, ior = 1. */
 static int parse_finish(struct parser *p, struct scene_finish *f)
 {
-    double v[6];
-    struct token ior_at;
-    if (read_numbers(p, v, 6, NULL) || read_number(p, &f->ior, &ior_at))
+    struct token kr_at, ior_at;
+    if (read_number(p, &f->ka, NULL) || read_number(p, &f->kd, NULL) ||
+        read_number(p, &f->ks, NULL) || read_number(p, &f->n, NULL) ||
+        read_number(p, &f->kr, &kr_at))
         return -1;
-    f->ka = v[0];
-    f->kd = v[1];
-    f->ks = v[2];
-    f->n = v[3];
-    f->kr = v[4];
-    f->kt = v[5];
+    if (p->tok.kind != TOKEN_EOF && p->tok.line > kr_at.line) {
+        f->kt = 0;
+        f->ior = 1;
+        return 0;
+    }
+    if (read_number(p, &f->kt, NULL) || read_number(p, &f->ior, &ior_at))
+        return -1;
     if (f->kt > 0 && !(f->ior > 0))
         return fail_value(p, &ior_at,
                           "a positive index of refraction since kt > 0");

@@ -189,6 +189,33 @@ static void test_semantic_edges(void)
     scene_free(&s);
 }
 
+/* SPEC 3's short finish form: kr ends a finish when the next token is on a
+ * later line; then kt = 0 and ior = 1. Full and short forms mix. */
+static void test_short_finish(void)
+{
+    struct scene s = parse_ok(CAM LIGHTS PIGS "3\n0.4 0.6 0 1 0.25\n"
+                                              "0.1 0.2 0.3 4 0.5 0.6 1.5\n"
+                                              "0.4 0.6 0.7 500 0\n0\n",
+                              __LINE__);
+    CHECK(s.nfinishes == 3);
+    CHECK(s.finishes[0].n == 1 && s.finishes[0].kr == 0.25 &&
+          s.finishes[0].kt == 0 && s.finishes[0].ior == 1);
+    CHECK(s.finishes[1].kr == 0.5 && s.finishes[1].kt == 0.6 &&
+          s.finishes[1].ior == 1.5);
+    CHECK(s.finishes[2].ks == 0.7 && s.finishes[2].n == 500 &&
+          s.finishes[2].kt == 0 && s.finishes[2].ior == 1);
+    CHECK(s.nobjects == 0);
+    scene_free(&s);
+    /* A comment after kr does not make the next token's line the same. */
+    s = parse_ok(CAM LIGHTS PIGS "1\n0.4 0.6 0 1 0.25 # short\n0\n", __LINE__);
+    CHECK(s.nfinishes == 1 && s.finishes[0].kt == 0 && s.finishes[0].ior == 1);
+    scene_free(&s);
+    /* kt on kr's line: the full form, so ior must follow. */
+    EXPECT_ERROR(CAM LIGHTS PIGS "1\n0.4 0.6 0 1 0.25 0.5\n0\n",
+                 "t.txt:12:1: error: expected a positive index of refraction "
+                 "since kt > 0, found '0'");
+}
+
 /* Object lists grow as they are read; many entries, each checked. */
 static void test_many_objects(void)
 {
@@ -531,6 +558,7 @@ int main(void)
     test_whitespace_forms();
     test_directives();
     test_semantic_edges();
+    test_short_finish();
     test_many_objects();
     test_unterminated_buffer();
     test_api_edges();
