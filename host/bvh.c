@@ -9,18 +9,18 @@
 /* SAH bins along the split axis: more bins find better planes, fewer are
  * faster; 16 is the usual balance. */
 #define BVH_BINS 16
-/* A node with at most this many spheres is always a leaf. */
+/* A node with at most this many boxes is always a leaf. */
 #define BVH_MIN_SPLIT 2
-/* Above this many spheres a node is split even when SAH prefers a leaf. */
+/* Above this many boxes a node is split even when SAH prefers a leaf. */
 #define BVH_MAX_LEAF 8
-/* Cost of visiting an inner node, relative to one sphere test. */
+/* Cost of visiting an inner node, relative to one primitive test. */
 #define BVH_TRAVERSAL_COST 1.0
 /* The deepest a node may sit (root = 0); see the invariant in bvh.h. */
 #define BVH_MAX_NODE_DEPTH (TP2_BVH_MAX_DEPTH - 1)
-/* Most spheres accepted: 2 n - 1 nodes must be indexable by int32. */
-#define BVH_MAX_SPHERES ((size_t)1 << 30)
+/* Most boxes accepted: 2 n - 1 nodes must be indexable by int32. */
+#define BVH_MAX_PRIMS ((size_t)1 << 30)
 
-/* One sphere while building: its float box, its center (the key that is
+/* One box while building: its float bounds, its center (the key that is
  * binned and split on), and where it came from. Partitions move these. */
 struct prim {
     float lo[3], hi[3];
@@ -29,14 +29,14 @@ struct prim {
     uint8_t bin; /* bin along the current node's axis, between two passes */
 };
 
-/* A node whose spheres are prims[begin, end), still to be filled in;
+/* A node whose boxes are prims[begin, end), still to be filled in;
  * cmin, cmax bound their centers (computed by whoever made the task). */
 struct task {
     uint32_t node, begin, end, depth;
     double cmin[3], cmax[3];
 };
 
-/* The spheres whose centers fall in one SAH bin. */
+/* The boxes whose centers fall in one SAH bin. */
 struct bin {
     uint32_t count;
     float lo[3], hi[3];
@@ -66,17 +66,15 @@ static float float_up(double x)
     return (double)f < x ? nextafterf(f, INFINITY) : f;
 }
 
-/* Fills p from one sphere. c - r and c + r are rounded to nearest, so the
- * exact value lies strictly between their neighbours: stepping one double
- * outward before rounding to float makes the box contain the exact
- * sphere. |r| because the shader only sees r^2. */
-static void prim_init(struct prim *p, const double s[4], uint32_t index)
+/* Fills p from one box (lo, hi). Its bounds were rounded to nearest in
+ * double, so stepping one double outward before rounding to float makes
+ * the float box contain the exact shape; its center is the key. */
+static void prim_init(struct prim *p, const double box[6], uint32_t index)
 {
-    double r = fabs(s[3]);
     for (int a = 0; a < 3; a++) {
-        p->lo[a] = float_down(nextafter(s[a] - r, -INFINITY));
-        p->hi[a] = float_up(nextafter(s[a] + r, INFINITY));
-        p->c[a] = s[a];
+        p->lo[a] = float_down(nextafter(box[a], -INFINITY));
+        p->hi[a] = float_up(nextafter(box[a + 3], INFINITY));
+        p->c[a] = box[a] / 2 + box[a + 3] / 2;
     }
     p->index = index;
     p->bin = 0;
@@ -111,7 +109,7 @@ static double box_half_area(const float lo[3], const float hi[3])
 }
 
 /* The bin of centroid coordinate c in [cmin, cmin + extent]; NaN goes to
- * bin 0 so that every sphere lands somewhere. */
+ * bin 0 so that every box lands somewhere. */
 static int bin_of(double c, double cmin, double extent)
 {
     double f = (c - cmin) / extent * BVH_BINS;
@@ -216,7 +214,7 @@ static uint32_t partition_bins(struct prim *p, uint32_t n, int split)
     return i;
 }
 
-/* How many spheres a subtree with `levels` levels below its root can hold
+/* How many boxes a subtree with `levels` levels below its root can hold
  * with leaves of at most BVH_MAX_LEAF: median splits achieve it. */
 static uint64_t capacity(int levels)
 {
@@ -240,7 +238,7 @@ static void centroid_empty(double cmin[3], double cmax[3])
     }
 }
 
-/* t's centroid bounds, by a pass over its spheres (the root, and the
+/* t's centroid bounds, by a pass over its boxes (the root, and the
  * halves of a median split, which bins do not describe). */
 static void task_centroids(const struct prim *prims, struct task *t)
 {
@@ -249,7 +247,7 @@ static void task_centroids(const struct prim *prims, struct task *t)
         centroid_grow(t->cmin, t->cmax, prims[i].c);
 }
 
-/* Makes node a leaf over t's spheres, bounds by a pass over them. */
+/* Makes node a leaf over t's boxes, bounds by a pass over them. */
 static void make_leaf(const struct prim *prims, const struct task *t,
                       struct bvh_node *node)
 {
@@ -261,9 +259,9 @@ static void make_leaf(const struct prim *prims, const struct task *t,
 }
 
 /* Decides node t. Either makes it a leaf (returns 0), or fills its bounds,
- * partitions its spheres and sets the two children's ranges and centroid
+ * partitions its boxes and sets the two children's ranges and centroid
  * bounds in kids (returns 1). The binning pass also gathers the bounds, so
- * an inner node costs two passes over its spheres. */
+ * an inner node costs two passes over its boxes. */
 static int split_node(struct prim *prims, const struct task *t,
                       struct bvh_node *node, struct task kids[2])
 {
@@ -381,12 +379,12 @@ static int split_node(struct prim *prims, const struct task *t,
     return 1;
 }
 
-int bvh_build(const double (*spheres)[4], size_t n, struct bvh *b)
+int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
 {
     memset(b, 0, sizeof *b);
     if (n == 0)
         return 0;
-    if (n > BVH_MAX_SPHERES)
+    if (n > BVH_MAX_PRIMS)
         return -1;
 
     size_t max_nodes = 2 * n - 1;
@@ -399,7 +397,7 @@ int bvh_build(const double (*spheres)[4], size_t n, struct bvh *b)
         return -1;
     }
     for (size_t i = 0; i < n; i++)
-        prim_init(&prims[i], spheres[i], (uint32_t)i);
+        prim_init(&prims[i], boxes[i], (uint32_t)i);
 
     /* Depth-first with an explicit stack, left child first, so subtrees
      * sit together in nodes[]. A task at depth d finds at most d right

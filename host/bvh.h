@@ -1,4 +1,5 @@
-/* bvh.h: a bounding volume hierarchy over spheres, laid out for the shader.
+/* bvh.h: a bounding volume hierarchy over boxes (the bounded objects of a
+ * scene), laid out for the shader.
  *
  * Depth invariant: every node's depth (root = 0) is at most
  * TP2_BVH_MAX_DEPTH - 1. A traversal that pushes the far child and
@@ -18,7 +19,7 @@
 
 /* One node as the shader reads it (std430: vec3 lo; int first; vec3 hi;
  * int count). Bounds are floats rounded outward, so each node's box
- * contains its spheres exactly, not just their float approximations. */
+ * contains its objects exactly, not just their float approximations. */
 struct bvh_node {
     float lo[3];
     int32_t first; /* inner: left child, right is first + 1; leaf: 1st slot */
@@ -35,12 +36,12 @@ _Static_assert(offsetof(struct bvh_node, count) == 28, "bvh_node.count at 28");
 struct bvh {
     struct bvh_node *nodes; /* NULL, like order, when n == 0 */
     size_t node_count;      /* at most 2 n - 1; nodes[0] is the root */
-    uint32_t *order;        /* order[slot] = input sphere there; n entries */
+    uint32_t *order;        /* order[slot] = input box there; n entries */
 };
 
-/* Builds a BVH over n spheres given as (cx, cy, cz, r), r >= 0, with binned
+/* Builds a BVH over n boxes given as (lo x y z, hi x y z), with binned
  * SAH (16 bins on the longest axis of the centroid bounds). A node becomes
- * a leaf when it holds <= 2 spheres, or <= 8 and splitting costs no less
+ * a leaf when it holds <= 2 boxes, or <= 8 and splitting costs no less
  * than intersecting them all; a leaf holds more than 8 only when all its
  * centers are equal. Near the depth limit, splits that would not fit in the
  * levels left become median splits, so leaves stay small there too. The
@@ -48,7 +49,7 @@ struct bvh {
  * give infinite bounds; NaN gives an infinite box. Returns 0, or -1 when
  * out of memory or n > 2^30 (node indices must fit int32); b is zeroed on
  * failure and when n == 0. */
-int bvh_build(const double (*spheres)[4], size_t n, struct bvh *b);
+int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b);
 
 /* Frees the arrays and zeroes b; safe on a zeroed one. */
 void bvh_free(struct bvh *b);

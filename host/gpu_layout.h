@@ -52,15 +52,18 @@ TP2_LAYOUT(gpu_light_f, att, 32);
 TP2_SIZE(gpu_light_f, 48);
 TP2_LAYOUT(gpu_pigment_f, color1, 0);
 TP2_LAYOUT(gpu_pigment_f, color2, 16);
-TP2_LAYOUT(gpu_pigment_f, params, 32);
-TP2_LAYOUT(gpu_pigment_f, kind, 48);
-TP2_SIZE(gpu_pigment_f, 64);
+TP2_LAYOUT(gpu_pigment_f, p, 32);
+TP2_LAYOUT(gpu_pigment_f, q, 48);
+TP2_LAYOUT(gpu_pigment_f, kind, 64);
+TP2_SIZE(gpu_pigment_f, 80);
 TP2_LAYOUT(gpu_finish_f, phong, 0);
 TP2_LAYOUT(gpu_finish_f, optics, 16);
 TP2_SIZE(gpu_finish_f, 32);
-TP2_LAYOUT(gpu_object_f, geom, 0);
-TP2_LAYOUT(gpu_object_f, ids, 16);
-TP2_SIZE(gpu_object_f, 32);
+TP2_LAYOUT(gpu_object_f, a, 0);
+TP2_LAYOUT(gpu_object_f, b, 16);
+TP2_LAYOUT(gpu_object_f, c, 32);
+TP2_LAYOUT(gpu_object_f, ids, 48);
+TP2_SIZE(gpu_object_f, 64);
 
 /* double: dvec4 is 32 bytes and 32-aligned, so structs round up to 32. */
 TP2_LAYOUT(gpu_frame_d, eye, 0);
@@ -83,15 +86,18 @@ TP2_LAYOUT(gpu_light_d, att, 48);
 TP2_SIZE(gpu_light_d, 64);
 TP2_LAYOUT(gpu_pigment_d, color1, 0);
 TP2_LAYOUT(gpu_pigment_d, color2, 16);
-TP2_LAYOUT(gpu_pigment_d, params, 32);
-TP2_LAYOUT(gpu_pigment_d, kind, 64);
-TP2_SIZE(gpu_pigment_d, 96);
+TP2_LAYOUT(gpu_pigment_d, p, 32);
+TP2_LAYOUT(gpu_pigment_d, q, 64);
+TP2_LAYOUT(gpu_pigment_d, kind, 96);
+TP2_SIZE(gpu_pigment_d, 128);
 TP2_LAYOUT(gpu_finish_d, phong, 0);
 TP2_LAYOUT(gpu_finish_d, optics, 16);
 TP2_SIZE(gpu_finish_d, 32);
-TP2_LAYOUT(gpu_object_d, geom, 0);
-TP2_LAYOUT(gpu_object_d, ids, 32);
-TP2_SIZE(gpu_object_d, 64);
+TP2_LAYOUT(gpu_object_d, a, 0);
+TP2_LAYOUT(gpu_object_d, b, 32);
+TP2_LAYOUT(gpu_object_d, c, 64);
+TP2_LAYOUT(gpu_object_d, ids, 96);
+TP2_SIZE(gpu_object_d, 128);
 
 #undef TP2_LAYOUT
 #undef TP2_SIZE

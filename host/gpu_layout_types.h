@@ -23,7 +23,7 @@ struct TP2_T(gpu_frame) {
     TP2_VEC4(area);     /* x: arealight radius */
     TP2_VEC4(limits);   /* x: bailout, the least weight a ray is traced with */
     TP2_IVEC4(counts);  /* width, height, point lights, objects */
-    TP2_IVEC4(geometry); /* spheres, planes (after the spheres), BVH nodes */
+    TP2_IVEC4(geometry); /* bounded objects, unbounded ones after them, BVH nodes */
     TP2_IVEC4(sampling); /* lattice generator, arealight index, samples */
 };
 
@@ -33,11 +33,12 @@ struct TP2_T(gpu_light) {
     TP2_VEC4(att);    /* a b c of 1 / (a + b d + c d^2), already non-zero */
 };
 
-struct TP2_T(gpu_pigment) {
+struct TP2_T(gpu_pigment) { /* what each kind keeps where: pigments.c */
     TP2_VEC4(color1);
     TP2_VEC4(color2);
-    TP2_RVEC4(params); /* x: checker side */
-    TP2_IVEC4(kind);   /* x: TP2_PIGMENT_* */
+    TP2_RVEC4(p);
+    TP2_RVEC4(q);
+    TP2_IVEC4(kind);   /* TP2_PIGMENT_*; texmap: first texel, width, height */
 };
 
 struct TP2_T(gpu_finish) {
@@ -45,9 +46,11 @@ struct TP2_T(gpu_finish) {
     TP2_VEC4(optics); /* kr kt ior */
 };
 
-struct TP2_T(gpu_object) {
-    TP2_RVEC4(geom); /* sphere: center, radius; plane: unit normal, d */
-    TP2_IVEC4(ids);  /* TP2_OBJECT_*, pigment, finish */
+struct TP2_T(gpu_object) { /* what each kind keeps where: shapes.c */
+    TP2_RVEC4(a);
+    TP2_RVEC4(b);
+    TP2_RVEC4(c);
+    TP2_IVEC4(ids);  /* TP2_SHAPE_*, pigment, finish, first row in extra */
 };
 
 #undef TP2_RVEC4

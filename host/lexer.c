@@ -174,6 +174,17 @@ void lexer_next(struct lexer *lx, struct token *tok)
         lex_number(lx, tok, n, value);
 }
 
+void lexer_rescan_word(struct lexer *lx, struct token *tok)
+{
+    if (tok->kind == TOKEN_EOF || tok->text[0] == '\0')
+        return;
+    lx->pos = (size_t)(tok->text - lx->buf);
+    lx->line = tok->line;
+    lx->col = tok->col;
+    lx->failed = 0;
+    lex_word(lx, tok);
+}
+
 int token_is_nonfinite_word(const struct token *tok)
 {
     if (tok->kind != TOKEN_WORD || tok->len == 0)
@@ -218,6 +229,19 @@ void lexer_quote(const char *s, size_t len, char *out, size_t size)
     if (shown < len)
         append(out, size, &used, "...");
     append(out, size, &used, "'");
+}
+
+void keyword_list(const char *const *words, int n, char *out, size_t size)
+{
+    size_t used = 0;
+    if (size == 0)
+        return;
+    out[0] = '\0';
+    for (int i = 0; i < n; i++) {
+        append(out, size, &used, i == 0 ? "'" : i == n - 1 ? " or '" : ", '");
+        append(out, size, &used, words[i]);
+        append(out, size, &used, "'");
+    }
 }
 
 void token_describe(const struct token *tok, char *out, size_t size)

@@ -47,6 +47,12 @@ void lexer_free(struct lexer *lx);
  * same token forever. */
 void lexer_next(struct lexer *lx, struct token *tok);
 
+/* Reads again, as a word, the token *tok that lexer_next just gave (a
+ * number, a word or an error), so that a file name such as "1.ppm" or
+ * "2x.bmp" is one word; a lexical error there is forgotten. At the end of
+ * the text, or at a NUL byte, *tok stays what it was. */
+void lexer_rescan_word(struct lexer *lx, struct token *tok);
+
 /* 1 if tok is a word that strtod reads whole as infinity or NaN ("inf",
  * "NaN", "Infinity"), so a parser can say a finite number was expected. */
 int token_is_nonfinite_word(const struct token *tok);
@@ -55,6 +61,9 @@ int token_is_nonfinite_word(const struct token *tok);
  * as \xNN, at most 32 bytes of it and then "...". Always NUL-terminates
  * out (when size > 0); LEXER_QUOTE_SIZE is always enough. */
 void lexer_quote(const char *s, size_t len, char *out, size_t size);
+
+/* Writes "'a', 'b' or 'c'" for the n words, for "expected ..." messages. */
+void keyword_list(const char *const *words, int n, char *out, size_t size);
 
 /* What a message says was found: "end of file" or the quoted token. */
 void token_describe(const struct token *tok, char *out, size_t size);

@@ -87,46 +87,26 @@ static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
                 vectors, vectors == 1 ? "" : "s", vk->props.deviceName);
 }
 
-/* The specialization constants of tp2_shared.h, in id order. */
-struct spec_values {
-    VkBool32 flags[TP2_SPEC_SAMPLES];
-    int32_t samples;
-    VkBool32 spheres;
-    VkBool32 bvh;
-    VkBool32 loop_guard;
-};
-
+/* The specialization constants of tp2_shared.h, indexed by id: booleans
+ * (VkBool32) and ints are all 32-bit words. */
 static void spec_values(const struct scene_features *f, bool count_rays,
-                        bool loop_guard, struct spec_values *v,
-                        VkSpecializationMapEntry *map)
+                        bool loop_guard, int32_t v[TP2_SPEC_COUNT],
+                        VkSpecializationMapEntry map[TP2_SPEC_COUNT])
 {
-    *v = (struct spec_values){
-        .flags = {
-            [TP2_SPEC_REFLECT] = f->reflect,
-            [TP2_SPEC_REFRACT] = f->refract,
-            [TP2_SPEC_CHECKER] = f->checker,
-            [TP2_SPEC_PLANES] = f->planes,
-            [TP2_SPEC_FOG] = f->fog,
-            [TP2_SPEC_LENS] = f->lens,
-            [TP2_SPEC_AREA] = f->area,
-            [TP2_SPEC_STATS] = count_rays,
-        },
-        .samples = f->samples,
-        .spheres = f->spheres,
-        .bvh = f->bvh,
-        .loop_guard = loop_guard,
-    };
-    for (uint32_t id = 0; id < TP2_SPEC_SAMPLES; id++)
-        map[id] = (VkSpecializationMapEntry){id, (uint32_t)(id * sizeof(VkBool32)),
-                                             sizeof(VkBool32)};
-    map[TP2_SPEC_SAMPLES] = (VkSpecializationMapEntry){
-        TP2_SPEC_SAMPLES, offsetof(struct spec_values, samples), sizeof(int32_t)};
-    map[TP2_SPEC_SPHERES] = (VkSpecializationMapEntry){
-        TP2_SPEC_SPHERES, offsetof(struct spec_values, spheres), sizeof(VkBool32)};
-    map[TP2_SPEC_BVH] = (VkSpecializationMapEntry){
-        TP2_SPEC_BVH, offsetof(struct spec_values, bvh), sizeof(VkBool32)};
-    map[TP2_SPEC_LOOP_GUARD] = (VkSpecializationMapEntry){
-        TP2_SPEC_LOOP_GUARD, offsetof(struct spec_values, loop_guard), sizeof(VkBool32)};
+    v[TP2_SPEC_REFLECT] = f->reflect;
+    v[TP2_SPEC_REFRACT] = f->refract;
+    v[TP2_SPEC_PIGMENTS] = f->pigments;
+    v[TP2_SPEC_SHAPES] = f->shapes;
+    v[TP2_SPEC_ONLY_SHAPE] = f->only_shape;
+    v[TP2_SPEC_FOG] = f->fog;
+    v[TP2_SPEC_LENS] = f->lens;
+    v[TP2_SPEC_AREA] = f->area;
+    v[TP2_SPEC_STATS] = count_rays;
+    v[TP2_SPEC_SAMPLES] = f->samples;
+    v[TP2_SPEC_BVH] = f->bvh;
+    v[TP2_SPEC_LOOP_GUARD] = loop_guard;
+    for (uint32_t id = 0; id < TP2_SPEC_COUNT; id++)
+        map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }
 
 /* Only CPU devices (lavapipe) cut long shader loops short; the guard's
@@ -183,14 +163,14 @@ static int create_pipeline(struct renderer *r, bool use_double,
         .pCode = use_double ? tp2_trace_double : tp2_trace_float,
     };
     TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
-    struct spec_values values;
+    int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(features, count_rays, needs_loop_guard(&r->vk), &values, map);
+    spec_values(features, count_rays, needs_loop_guard(&r->vk), values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
         .dataSize = sizeof values,
-        .pData = &values,
+        .pData = values,
     };
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -398,7 +378,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .height = opt->height,
         .use_double = opt->use_double,
         .samples = opt->samples,
-        .bvh_min_spheres = opt->bvh_min,
+        .bvh_min = opt->bvh_min,
         .bailout = opt->bailout,
     };
     VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);

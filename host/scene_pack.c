@@ -1,3 +1,6 @@
+/* scene_pack.c: the parsed scene as the shader's storage buffers. What each
+ * kind of object and pigment packs into is in shapes.c and pigments.c;
+ * this file orders, counts and converts. */
 #include "scene_pack.h"
 
 #include <math.h>
@@ -7,11 +10,14 @@
 
 #include "bvh.h"
 #include "gpu_layout.h"
+#include "pigments.h"
+#include "shapes.h"
+#include "vec3.h"
 
-/* Fewer spheres than this are tested in a plain loop: on lavapipe's 8-wide
- * SIMD the loop beats a divergent tree walk up to about here (measured with
- * --bvh-min, README.TXT "Performance"). */
-#define TP2_BVH_MIN_SPHERES 16
+/* Fewer bounded objects than this are tested in a plain loop: on
+ * lavapipe's 8-wide SIMD the loop beats a divergent tree walk up to about
+ * here (measured with --bvh-min, README.TXT "Performance"). */
+#define TP2_BVH_MIN_OBJECTS 16
 
 _Static_assert(TP2_BVH_STACK >= TP2_BVH_MAX_DEPTH,
                "the shader's BVH stack must hold the deepest tree");
@@ -22,40 +28,34 @@ struct camera_basis {
     double u[3], v[3], w[3];
 };
 
+/* A GPU primitive: primitive k of scene object `object`. */
+struct prim_ref {
+    size_t object, k;
+};
+
 /* Everything both packings share, computed once in double. */
 struct layout {
     struct camera_basis cam;
-    size_t nspheres;
-    size_t *object_order; /* GPU slot -> scene object: spheres, then planes */
+    size_t nprims, nbounded;  /* slots [0, nbounded) are in BVH order */
+    struct prim_ref *slots;   /* slot -> primitive */
+    size_t nextra;            /* rows of the extra buffer */
     struct bvh bvh;
+    size_t ntexels;
+    size_t *texel_offset;     /* per texture: its first texel */
     int samples;
 };
-
-static void normalize3(double v[3])
-{
-    double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int i = 0; i < 3; i++)
-        v[i] /= len;
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* The parser has rejected eye == center and up parallel to the view. */
 static void camera_basis(const struct scene *s, int width, int height,
                          struct camera_basis *cam)
 {
     const double pi = 3.14159265358979323846;
-    for (int i = 0; i < 3; i++)
-        cam->w[i] = s->center[i] - s->eye[i];
-    normalize3(cam->w);
-    cross3(cam->w, s->up, cam->u);
-    normalize3(cam->u);
-    cross3(cam->u, cam->w, cam->v);
+    double d[3];
+    vec3_sub(s->center, s->eye, d);
+    vec3_unit(d, cam->w);
+    vec3_cross(cam->w, s->up, cam->u);
+    vec3_unit(cam->u, cam->u);
+    vec3_cross(cam->u, cam->w, cam->v);
     double half_h = tan(s->fov * pi / 360.0);
     double half_w = half_h * (double)width / (double)height;
     for (int i = 0; i < 3; i++) {
@@ -132,17 +132,39 @@ static void put_finish(float phong[4], float optics[4], const struct scene_finis
     memcpy(optics, o, sizeof o);
 }
 
-/* Sphere: center and radius as written. Plane: (a b c d) divided by
- * |(a b c)|, so the shader gets a unit normal and a true distance. */
-static int object_geometry(const struct scene_object *o, double g[4])
+/* Pigment i's record, texture resolved to texel offset and size. */
+static void pigment_record(const struct scene *s, const struct layout *lay, size_t i,
+                           struct pigment_record *rec, int32_t kind[4])
 {
-    memcpy(g, o->p, 4 * sizeof *g);
-    if (o->kind == OBJECT_SPHERE)
-        return TP2_OBJECT_SPHERE;
-    double len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    for (int i = 0; i < 4; i++)
-        g[i] /= len;
-    return TP2_OBJECT_PLANE;
+    const struct scene_pigment *pg = &s->pigments[i];
+    memset(rec, 0, sizeof *rec);
+    rec->texture = -1;
+    pigment_kinds[pg->kind].pack(pg, rec);
+    kind[0] = pigment_kinds[pg->kind].gpu_kind;
+    if (rec->texture >= 0) {
+        const struct scene_texture *t = &s->textures[rec->texture];
+        kind[1] = (int32_t)lay->texel_offset[rec->texture];
+        kind[2] = t->width;
+        kind[3] = t->height;
+    }
+}
+
+/* Primitive slot's record and its extra rows, whose first is *extra_at. */
+static void object_record(const struct scene *s, const struct layout *lay, size_t slot,
+                          struct shape_record *rec, double (*extra)[4], size_t *extra_at,
+                          int32_t ids[4])
+{
+    const struct prim_ref *ref = &lay->slots[slot];
+    const struct scene_object *o = &s->objects[ref->object];
+    const struct shape_kind *kind = &shape_kinds[o->kind];
+    const double *p = scene_object_reals(s, o);
+    memset(rec, 0, sizeof *rec);
+    ids[0] = kind->gpu_kind;
+    ids[1] = (int32_t)o->pigment;
+    ids[2] = (int32_t)o->finish;
+    ids[3] = (int32_t)*extra_at;
+    kind->pack(p, o->count, ref->k, rec, extra + *extra_at);
+    *extra_at += kind->extra_rows(p, o->count);
 }
 
 #define TP2_REAL float
@@ -165,47 +187,100 @@ static struct scene_features scene_features(const struct scene *s, int samples)
         .fog = s->has_fog && s->fog_density > 0,
         .lens = s->has_lens && s->lens_radius > 0,
         .area = s->has_arealight,
+        .only_shape = -1,
         .samples = samples,
     };
     for (size_t i = 0; i < s->nobjects; i++) {
         const struct scene_object *o = &s->objects[i];
         f.reflect |= s->finishes[o->finish].kr > 0;
         f.refract |= s->finishes[o->finish].kt > 0;
-        f.checker |= s->pigments[o->pigment].kind == PIGMENT_CHECKER;
-        f.spheres |= o->kind == OBJECT_SPHERE;
-        f.planes |= o->kind == OBJECT_PLANE;
+        f.pigments |= 1 << pigment_kinds[s->pigments[o->pigment].kind].gpu_kind;
+        f.shapes |= 1 << shape_kinds[o->kind].gpu_kind;
     }
+    for (int k = 0; k < 31; k++)
+        if (f.shapes == 1 << k)
+            f.only_shape = k;
     return f;
 }
 
-/* Object order and BVH: spheres in the BVH's order, then planes. */
+/* Slots: every object's primitives, the bounded ones first in the BVH's
+ * order, then the unbounded ones in scene order. */
 static int layout_objects(const struct scene *s, struct layout *lay)
 {
-    double (*spheres)[4] = malloc((s->nobjects ? s->nobjects : 1) * sizeof *spheres);
-    size_t *sphere_index = malloc((s->nobjects ? s->nobjects : 1) * sizeof *sphere_index);
-    lay->object_order = malloc((s->nobjects ? s->nobjects : 1) * sizeof *lay->object_order);
+    lay->nprims = 0;
+    for (size_t i = 0; i < s->nobjects; i++) {
+        const struct scene_object *o = &s->objects[i];
+        const struct shape_kind *kind = &shape_kinds[o->kind];
+        const double *p = scene_object_reals(s, o);
+        lay->nprims += kind->primitives(p, o->count);
+        lay->nextra += kind->extra_rows(p, o->count);
+    }
+    size_t n = lay->nprims ? lay->nprims : 1;
+    double (*boxes)[6] = malloc(n * sizeof *boxes);
+    struct prim_ref *bounded = malloc(n * sizeof *bounded);
+    lay->slots = malloc(n * sizeof *lay->slots);
     int rc = -1;
-    if (spheres && sphere_index && lay->object_order) {
-        size_t n = 0;
-        for (size_t i = 0; i < s->nobjects; i++)
-            if (s->objects[i].kind == OBJECT_SPHERE) {
-                memcpy(spheres[n], s->objects[i].p, sizeof spheres[n]);
-                sphere_index[n++] = i;
+    if (boxes && bounded && lay->slots) {
+        size_t nb = 0, nu = lay->nprims;
+        for (size_t i = 0; i < s->nobjects; i++) {
+            const struct scene_object *o = &s->objects[i];
+            const struct shape_kind *kind = &shape_kinds[o->kind];
+            const double *p = scene_object_reals(s, o);
+            size_t count = kind->primitives(p, o->count);
+            for (size_t k = 0; k < count; k++) {
+                struct prim_ref ref = {i, k};
+                if (kind->bounds(p, o->count, k, boxes[nb], boxes[nb] + 3))
+                    bounded[nb++] = ref;
+                else
+                    lay->slots[--nu] = ref; /* filled from the end */
             }
-        lay->nspheres = n;
-        if (bvh_build((const double (*)[4])spheres, n, &lay->bvh) == 0) {
-            size_t slot = 0;
-            for (; slot < n; slot++)
-                lay->object_order[slot] = sphere_index[lay->bvh.order[slot]];
-            for (size_t i = 0; i < s->nobjects; i++)
-                if (s->objects[i].kind != OBJECT_SPHERE)
-                    lay->object_order[slot++] = i;
+        }
+        /* The unbounded came in reverse: restore scene order. */
+        for (size_t a = nb, b = lay->nprims; a + 1 < b; a++, b--) {
+            struct prim_ref t = lay->slots[a];
+            lay->slots[a] = lay->slots[b - 1];
+            lay->slots[b - 1] = t;
+        }
+        lay->nbounded = nb;
+        if (bvh_build((const double (*)[6])boxes, nb, &lay->bvh) == 0) {
+            for (size_t slot = 0; slot < nb; slot++)
+                lay->slots[slot] = bounded[lay->bvh.order[slot]];
             rc = 0;
         }
     }
-    free(spheres);
-    free(sphere_index);
+    free(boxes);
+    free(bounded);
     return rc;
+}
+
+/* Each texture's first texel in the texel buffer. */
+static int layout_texels(const struct scene *s, struct layout *lay)
+{
+    lay->texel_offset = malloc((s->ntextures ? s->ntextures : 1) * sizeof *lay->texel_offset);
+    if (!lay->texel_offset)
+        return -1;
+    for (size_t i = 0; i < s->ntextures; i++) {
+        lay->texel_offset[i] = lay->ntexels;
+        lay->ntexels += (size_t)s->textures[i].width * (size_t)s->textures[i].height;
+    }
+    return 0;
+}
+
+static int pack_texels(const struct scene *s, const struct layout *lay,
+                       struct packed_scene *out)
+{
+    uint32_t *texels = alloc_buffer(out, TP2_BINDING_TEXELS, lay->ntexels, sizeof *texels);
+    if (!texels)
+        return -1;
+    for (size_t i = 0; i < s->ntextures; i++) {
+        const struct scene_texture *t = &s->textures[i];
+        size_t n = (size_t)t->width * (size_t)t->height;
+        uint32_t *dst = texels + lay->texel_offset[i];
+        for (size_t j = 0; j < n; j++)
+            dst[j] = (uint32_t)t->rgb[3 * j] | (uint32_t)t->rgb[3 * j + 1] << 8 |
+                     (uint32_t)t->rgb[3 * j + 2] << 16;
+    }
+    return 0;
 }
 
 static int pack_bvh(const struct bvh *b, struct packed_scene *out)
@@ -227,14 +302,19 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     camera_basis(s, opt->width, opt->height, &lay.cam);
     out->features = scene_features(s, lay.samples);
     int rc = layout_objects(s, &lay);
-    int bvh_min = opt->bvh_min_spheres ? opt->bvh_min_spheres : TP2_BVH_MIN_SPHERES;
-    out->features.bvh = lay.nspheres >= (size_t)bvh_min;
+    if (rc == 0)
+        rc = layout_texels(s, &lay);
+    int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
+    out->features.bvh = lay.nbounded >= (size_t)bvh_min;
     if (rc == 0)
         rc = opt->use_double ? pack_d(s, &lay, opt, out) : pack_f(s, &lay, opt, out);
     if (rc == 0)
         rc = pack_bvh(&lay.bvh, out);
+    if (rc == 0)
+        rc = pack_texels(s, &lay, out);
     bvh_free(&lay.bvh);
-    free(lay.object_order);
+    free(lay.slots);
+    free(lay.texel_offset);
     if (rc != 0)
         packed_scene_free(out);
     return rc;

@@ -9,13 +9,16 @@
 #include "tp2_shared.h"
 
 /* The input buffers, indexed by binding (TP2_BINDING_FRAME ..
- * TP2_BINDING_BVH); the image and stats buffers follow them. */
+ * TP2_BINDING_TEXELS); the image and stats buffers follow them. */
 #define TP2_INPUT_BUFFERS TP2_BINDING_IMAGE
 
 /* What the shader is specialised for: the features the scene uses. */
 struct scene_features {
-    bool reflect, refract, checker, spheres, planes, fog, lens, area;
-    bool bvh; /* enough spheres that the BVH beats a plain loop */
+    bool reflect, refract, fog, lens, area;
+    int pigments;   /* bit TP2_PIGMENT_k: kind k in use */
+    int shapes;     /* bit TP2_SHAPE_k: kind k in use */
+    int only_shape; /* the one TP2_SHAPE_* in use, else -1 */
+    bool bvh; /* enough bounded objects that the BVH beats a plain loop */
     int samples;
 };
 
@@ -23,7 +26,7 @@ struct pack_options {
     int width, height;
     bool use_double; /* pack for the double-precision (reference) shader */
     int samples;     /* samples per pixel; 0: the scene's, else 1 */
-    int bvh_min_spheres; /* use the BVH from this many spheres; 0: default */
+    int bvh_min; /* use the BVH from this many bounded objects; 0: default */
     double bailout;  /* rays of smaller weight are not traced; 0: all are */
 };
 
@@ -35,8 +38,10 @@ struct packed_scene {
     struct scene_features features;
 };
 
-/* Packs s: camera basis, lights, materials, spheres in BVH order followed
- * by planes, and the BVH. Returns 0, or -1 out of memory (out zeroed). */
+/* Packs s: camera basis, lights, materials, texels, and the objects as GPU
+ * primitives (a mesh makes one per triangle): the bounded ones in BVH
+ * order, then the unbounded ones, and the BVH. Returns 0, or -1 out of
+ * memory (out zeroed). */
 int scene_pack(const struct scene *s, const struct pack_options *opt,
                struct packed_scene *out);
 

@@ -1,5 +1,6 @@
-/* scene_parse.c: scene text -> struct scene, one function per section and
- * per entry type, each checking its own parameters.
+/* scene_parse.c: scene text -> struct scene, one function per section;
+ * each kind of pigment and object reads its own parameters through the
+ * tables of pigments.c and shapes.c (scene_reader.h is their interface).
  *
  * The parser looks one token ahead (p->tok). A lexical error is reported
  * only when the parser reaches it, so errors come out in text order. */
@@ -14,6 +15,9 @@
 #include <string.h>
 
 #include "lexer.h"
+#include "pigments.h"
+#include "scene_reader.h"
+#include "shapes.h"
 
 /* Counts, indices and integer settings are kept within int32. */
 #define INT_LIMIT 2147483647u
@@ -21,26 +25,27 @@
 /* |w x up| below this (unit vectors) means up gives no usable "up". */
 #define PARALLEL_EPS 1e-9
 
-struct parser {
+struct scene_reader {
     struct lexer lx;
     struct token tok; /* the next token, not yet consumed */
     const char *name;
+    char *dir; /* the scene file's folder, for the files it names */
     char *err;
     size_t errsize;
     struct scene s;
-    size_t cap_lights, cap_pigments, cap_finishes, cap_objects;
+    size_t cap_lights, cap_pigments, cap_finishes, cap_objects, cap_reals;
 };
 
 /* ---- messages ---------------------------------------------------------- */
 
-static void next(struct parser *p)
+static void next(struct scene_reader *p)
 {
     lexer_next(&p->lx, &p->tok);
 }
 
 /* Writes "NAME:LINE:COL: error: ..." at token at; returns -1. */
-static int fail_at(struct parser *p, const struct token *at, const char *fmt,
-                   ...)
+int read_fail(struct scene_reader *p, const struct token *at, const char *fmt,
+              ...)
 {
     char msg[512];
     va_list ap;
@@ -53,7 +58,14 @@ static int fail_at(struct parser *p, const struct token *at, const char *fmt,
     return -1;
 }
 
-static int fail_oom(struct parser *p)
+int read_fail_text(struct scene_reader *p, const char *text)
+{
+    if (p->err && p->errsize > 0)
+        snprintf(p->err, p->errsize, "%s", text);
+    return -1;
+}
+
+static int fail_oom(struct scene_reader *p)
 {
     if (p->err && p->errsize > 0)
         snprintf(p->err, p->errsize, "tp2: out of memory reading '%s'",
@@ -63,19 +75,19 @@ static int fail_oom(struct parser *p)
 
 /* "expected WHAT, found TOKEN" at token at; a lexical error there wins,
  * since it says more about the text than what the grammar wanted. */
-static int fail_value(struct parser *p, const struct token *at,
-                      const char *what)
+int read_expected(struct scene_reader *p, const struct token *at,
+                  const char *what)
 {
     if (at->kind == TOKEN_ERROR)
-        return fail_at(p, at, "%s", p->lx.message);
+        return read_fail(p, at, "%s", p->lx.message);
     char found[LEXER_QUOTE_SIZE];
     token_describe(at, found, sizeof found);
-    return fail_at(p, at, "expected %s, found %s", what, found);
+    return read_fail(p, at, "expected %s, found %s", what, found);
 }
 
-static int fail_expected(struct parser *p, const char *what)
+static int fail_expected(struct scene_reader *p, const char *what)
 {
-    return fail_value(p, &p->tok, what);
+    return read_expected(p, &p->tok, what);
 }
 
 /* ---- tokens ------------------------------------------------------------ */
@@ -84,14 +96,6 @@ static int is_word(const struct token *t, const char *w)
 {
     return t->kind == TOKEN_WORD && t->len == strlen(w) &&
            memcmp(t->text, w, t->len) == 0;
-}
-
-static int is_one_of(const struct token *t, const char *const *words)
-{
-    for (; *words; words++)
-        if (is_word(t, *words))
-            return 1;
-    return 0;
 }
 
 enum uint_kind { UINT_NOT, UINT_OK, UINT_TOO_BIG };
@@ -124,7 +128,7 @@ static void digits_text(const struct token *t, char *out, size_t size)
 /* ---- values ------------------------------------------------------------ */
 
 /* Reads one finite number; *at (may be NULL) gets its token. */
-static int read_number(struct parser *p, double *v, struct token *at)
+static int read_number(struct scene_reader *p, double *v, struct token *at)
 {
     if (at)
         *at = p->tok;
@@ -138,7 +142,7 @@ static int read_number(struct parser *p, double *v, struct token *at)
     return fail_expected(p, "a number");
 }
 
-static int read_numbers(struct parser *p, double *v, int n, struct token *at)
+int read_numbers(struct scene_reader *p, double *v, int n, struct token *at)
 {
     for (int i = 0; i < n; i++)
         if (read_number(p, &v[i], i == 0 ? at : NULL))
@@ -147,27 +151,27 @@ static int read_numbers(struct parser *p, double *v, int n, struct token *at)
 }
 
 /* Reads a number that must be > 0 (or >= 0 when zero_ok); what names it. */
-static int read_bounded(struct parser *p, double *v, int zero_ok,
-                        const char *what)
+int read_bounded(struct scene_reader *p, double *v, int zero_ok,
+                 const char *what)
 {
     struct token at;
     if (read_number(p, v, &at))
         return -1;
     if (*v > 0 || (zero_ok && *v == 0))
         return 0;
-    return fail_value(p, &at, what);
+    return read_expected(p, &at, what);
 }
 
 /* Reads an integer in [min, INT_LIMIT]; what is the "expected" phrase and
  * noun names the value when it is too large. */
-static int read_int(struct parser *p, uint32_t min, const char *what,
+static int read_int(struct scene_reader *p, uint32_t min, const char *what,
                     const char *noun, uint32_t *v)
 {
     enum uint_kind k = token_uint(&p->tok, v);
     if (k == UINT_TOO_BIG) {
         char digits[48];
         digits_text(&p->tok, digits, sizeof digits);
-        return fail_at(p, &p->tok, "%s %s is too large (at most %u)", noun,
+        return read_fail(p, &p->tok, "%s %s is too large (at most %u)", noun,
                        digits, INT_LIMIT);
     }
     if (k != UINT_OK || *v < min)
@@ -177,18 +181,30 @@ static int read_int(struct parser *p, uint32_t min, const char *what,
 }
 
 /* read_int, with values above max reported as too large. */
-static int read_int_at_most(struct parser *p, uint32_t min, uint32_t max,
+static int read_int_at_most(struct scene_reader *p, uint32_t min, uint32_t max,
                             const char *what, const char *noun, uint32_t *v)
 {
     struct token at = p->tok;
     if (read_int(p, min, what, noun, v))
         return -1;
     if (*v > max)
-        return fail_at(p, &at, "%s %u is too large (at most %u)", noun, *v, max);
+        return read_fail(p, &at, "%s %u is too large (at most %u)", noun, *v, max);
     return 0;
 }
 
-static int read_count(struct parser *p, size_t *n)
+int read_integer(struct scene_reader *p, size_t min, size_t max,
+                 const char *what, const char *noun, size_t *v)
+{
+    uint32_t u = 0;
+    uint32_t lo = min > INT_LIMIT ? INT_LIMIT : (uint32_t)min;
+    uint32_t hi = max > INT_LIMIT ? INT_LIMIT : (uint32_t)max;
+    if (read_int_at_most(p, lo, hi, what, noun, &u))
+        return -1;
+    *v = u;
+    return 0;
+}
+
+static int read_count(struct scene_reader *p, size_t *n)
 {
     uint32_t v = 0;
     if (read_int(p, 0, "a non-negative integer count", "count", &v))
@@ -199,7 +215,7 @@ static int read_count(struct parser *p, size_t *n)
 
 /* Reads an index into a list of n things called one/many ("pigment",
  * "pigments"); *at (may be NULL) gets its token. */
-static int read_index(struct parser *p, const char *one, const char *many,
+static int read_index(struct scene_reader *p, const char *one, const char *many,
                       size_t n, size_t *idx, struct token *at)
 {
     uint32_t v = 0;
@@ -214,7 +230,7 @@ static int read_index(struct parser *p, const char *one, const char *many,
     if (k == UINT_TOO_BIG || v >= n) {
         char digits[48];
         digits_text(&p->tok, digits, sizeof digits);
-        return fail_at(p, &p->tok, "%s index %s is out of range (%zu %s)",
+        return read_fail(p, &p->tok, "%s index %s is out of range (%zu %s)",
                        one, digits, n, n == 1 ? one : many);
     }
     *idx = v;
@@ -225,7 +241,7 @@ static int read_index(struct parser *p, const char *one, const char *many,
 /* Grows an array to hold at least need entries, doubling, so a count in
  * the file never decides an allocation by itself. Returns the (possibly
  * moved) array, or NULL when out of memory (arr is then still valid). */
-static void *grow(struct parser *p, void *arr, size_t *cap, size_t need,
+static void *grow(struct scene_reader *p, void *arr, size_t *cap, size_t need,
                   size_t elem)
 {
     if (need <= *cap)
@@ -246,12 +262,70 @@ static void *grow(struct parser *p, void *arr, size_t *cap, size_t need,
     return bigger;
 }
 
+struct scene *read_scene(struct scene_reader *p)
+{
+    return &p->s;
+}
+
+const struct token *read_peek(const struct scene_reader *p)
+{
+    return &p->tok;
+}
+
+int read_push(struct scene_reader *p, const double *v, size_t n)
+{
+    struct scene *s = &p->s;
+    void *a = grow(p, s->reals, &p->cap_reals, s->nreals + n, sizeof *s->reals);
+    if (!a)
+        return -1;
+    s->reals = a;
+    memcpy(s->reals + s->nreals, v, n * sizeof *v);
+    s->nreals += n;
+    return 0;
+}
+
+int read_file_name(struct scene_reader *p, const char *what, char **path,
+                   struct token *at)
+{
+    lexer_rescan_word(&p->lx, &p->tok);
+    *at = p->tok;
+    if (p->tok.kind != TOKEN_WORD)
+        return read_expected(p, &p->tok, what);
+    size_t dir = p->tok.text[0] == '/' ? 0 : strlen(p->dir) + 1;
+    *path = malloc(dir + p->tok.len + 1);
+    if (!*path)
+        return fail_oom(p);
+    if (dir) {
+        memcpy(*path, p->dir, dir - 1);
+        (*path)[dir - 1] = '/';
+    }
+    memcpy(*path + dir, p->tok.text, p->tok.len);
+    (*path)[dir + p->tok.len] = '\0';
+    next(p);
+    return 0;
+}
+
+/* The folder of the file called name: what comes before its last '/',
+ * "/" for a file in the root, "." for a bare name. NULL when out of
+ * memory. */
+static char *folder_of(const char *name)
+{
+    const char *slash = strrchr(name, '/');
+    size_t n = !slash ? 1 : slash == name ? 1 : (size_t)(slash - name);
+    char *dir = malloc(n + 1);
+    if (dir) {
+        memcpy(dir, !slash ? "." : name, n);
+        dir[n] = '\0';
+    }
+    return dir;
+}
+
 /* ---- camera ------------------------------------------------------------ */
 
 /* The optional header variant: an output name (ignored: the command line
  * names the output), then W H. A first token that is not a number marks
  * it; a number-like name such as "1.ppm" is a malformed number instead. */
-static int parse_header(struct parser *p)
+static int parse_header(struct scene_reader *p)
 {
     uint32_t w = 0, h = 0;
     if (p->tok.kind != TOKEN_WORD)
@@ -264,7 +338,7 @@ static int parse_header(struct parser *p)
     if (read_int(p, 1, "a positive integer image height", "image height", &h))
         return -1;
     if (w > TP2_MAX_IMAGE_SIDE || h > TP2_MAX_IMAGE_SIDE)
-        return fail_at(p, w > TP2_MAX_IMAGE_SIDE ? &w_at : &h_at,
+        return read_fail(p, w > TP2_MAX_IMAGE_SIDE ? &w_at : &h_at,
                        "image %s %u is too large (at most %d)",
                        w > TP2_MAX_IMAGE_SIDE ? "width" : "height",
                        w > TP2_MAX_IMAGE_SIDE ? w : h, TP2_MAX_IMAGE_SIDE);
@@ -304,7 +378,7 @@ static int up_is_parallel(const struct scene *s)
     return sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) < PARALLEL_EPS;
 }
 
-static int parse_camera(struct parser *p)
+static int parse_camera(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     struct token center_at, up_at, fov_at;
@@ -313,16 +387,16 @@ static int parse_camera(struct parser *p)
         return -1;
     if (s->eye[0] == s->center[0] && s->eye[1] == s->center[1] &&
         s->eye[2] == s->center[2])
-        return fail_at(p, &center_at, "center must differ from eye");
+        return read_fail(p, &center_at, "center must differ from eye");
     if (read_numbers(p, s->up, 3, &up_at))
         return -1;
     if (up_is_parallel(s))
-        return fail_at(p, &up_at,
+        return read_fail(p, &up_at,
                        "up vector is parallel to the view direction");
     if (read_number(p, &s->fov, &fov_at))
         return -1;
     if (!(s->fov > 0 && s->fov < 180))
-        return fail_value(p, &fov_at,
+        return read_expected(p, &fov_at,
                           "a field of view between 0 and 180 degrees "
                           "(exclusive)");
     return 0;
@@ -330,7 +404,7 @@ static int parse_camera(struct parser *p)
 
 /* ---- lights, pigments, finishes ---------------------------------------- */
 
-static int parse_light(struct parser *p, struct scene_light *l)
+static int parse_light(struct scene_reader *p, struct scene_light *l)
 {
     if (read_numbers(p, l->pos, 3, NULL) || read_numbers(p, l->color, 3, NULL))
         return -1;
@@ -341,7 +415,7 @@ static int parse_light(struct parser *p, struct scene_light *l)
     return 0;
 }
 
-static int parse_lights(struct parser *p)
+static int parse_lights(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     size_t n = 0;
@@ -360,35 +434,19 @@ static int parse_lights(struct parser *p)
     return 0;
 }
 
-/* Pigment types of SPEC.md that tp2 does not read yet. */
-static const char *const unsupported_pigments[] = { "gradient", "texmap",
-                                                    NULL };
-
-static int parse_pigment(struct parser *p, struct scene_pigment *pg)
+/* A pigment keyword, then that kind's parameters (pigments.c). */
+static int parse_pigment(struct scene_reader *p, struct scene_pigment *pg)
 {
-    struct token kw = p->tok;
-    if (is_word(&kw, "solid")) {
-        next(p);
-        pg->kind = PIGMENT_SOLID;
-        return read_numbers(p, pg->color1, 3, NULL);
-    }
-    if (is_word(&kw, "checker")) {
-        next(p);
-        pg->kind = PIGMENT_CHECKER;
-        if (read_numbers(p, pg->color1, 3, NULL) ||
-            read_numbers(p, pg->color2, 3, NULL))
-            return -1;
-        return read_bounded(p, &pg->scale, 0, "a positive checker cube side");
-    }
-    if (is_one_of(&kw, unsupported_pigments)) {
-        char q[LEXER_QUOTE_SIZE];
-        token_describe(&kw, q, sizeof q);
-        return fail_at(p, &kw, "pigment type %s is not supported yet", q);
-    }
-    return fail_expected(p, "'solid' or 'checker'");
+    for (int k = 0; k < PIGMENT_COUNT; k++)
+        if (is_word(&p->tok, pigment_kinds[k].keyword)) {
+            next(p);
+            pg->kind = k;
+            return pigment_kinds[k].read(p, pg);
+        }
+    return fail_expected(p, pigment_keywords());
 }
 
-static int parse_pigments(struct parser *p)
+static int parse_pigments(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     size_t n = 0;
@@ -411,7 +469,7 @@ static int parse_pigments(struct parser *p)
 /* `ka kd ks n kr kt ior`, or the short form `ka kd ks n kr` of other
  * courses' files (SPEC 3): kr is last when the next token begins on a later
  * line, and then kt = 0, ior = 1. */
-static int parse_finish(struct parser *p, struct scene_finish *f)
+static int parse_finish(struct scene_reader *p, struct scene_finish *f)
 {
     struct token kr_at, ior_at;
     if (read_number(p, &f->ka, NULL) || read_number(p, &f->kd, NULL) ||
@@ -426,12 +484,12 @@ static int parse_finish(struct parser *p, struct scene_finish *f)
     if (read_number(p, &f->kt, NULL) || read_number(p, &f->ior, &ior_at))
         return -1;
     if (f->kt > 0 && !(f->ior > 0))
-        return fail_value(p, &ior_at,
+        return read_expected(p, &ior_at,
                           "a positive index of refraction since kt > 0");
     return 0;
 }
 
-static int parse_finishes(struct parser *p)
+static int parse_finishes(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     size_t n = 0;
@@ -453,56 +511,28 @@ static int parse_finishes(struct parser *p)
 
 /* ---- objects ----------------------------------------------------------- */
 
-/* Object types of SPEC.md that tp2 does not read yet. */
-static const char *const unsupported_objects[] = {
-    "polyhedron", "box", "cylinder", "cone", "torus", "quadric", "triangle",
-    "mesh", NULL
-};
-
-static int parse_sphere(struct parser *p, struct scene_object *o)
-{
-    o->kind = OBJECT_SPHERE;
-    if (read_numbers(p, o->p, 3, NULL))
-        return -1;
-    return read_bounded(p, &o->p[3], 0, "a positive sphere radius");
-}
-
-static int parse_plane(struct parser *p, struct scene_object *o)
-{
-    struct token a_at;
-    o->kind = OBJECT_PLANE;
-    if (read_numbers(p, o->p, 3, &a_at))
-        return -1;
-    if (o->p[0] == 0 && o->p[1] == 0 && o->p[2] == 0)
-        return fail_at(p, &a_at, "plane normal (a b c) must not be zero");
-    return read_number(p, &o->p[3], NULL);
-}
-
-static int parse_object(struct parser *p, struct scene_object *o)
+/* Indices, an object keyword, then that kind's parameters (shapes.c),
+ * which become the object's numbers. */
+static int parse_object(struct scene_reader *p, struct scene_object *o)
 {
     const struct scene *s = &p->s;
     if (read_index(p, "pigment", "pigments", s->npigments, &o->pigment,
                    NULL) ||
         read_index(p, "finish", "finishes", s->nfinishes, &o->finish, NULL))
         return -1;
-    struct token kw = p->tok;
-    if (is_word(&kw, "sphere")) {
-        next(p);
-        return parse_sphere(p, o);
-    }
-    if (is_word(&kw, "plane")) {
-        next(p);
-        return parse_plane(p, o);
-    }
-    if (is_one_of(&kw, unsupported_objects)) {
-        char q[LEXER_QUOTE_SIZE];
-        token_describe(&kw, q, sizeof q);
-        return fail_at(p, &kw, "object type %s is not supported yet", q);
-    }
-    return fail_expected(p, "'sphere' or 'plane'");
+    for (int k = 0; k < SHAPE_COUNT; k++)
+        if (is_word(&p->tok, shape_kinds[k].keyword)) {
+            next(p);
+            o->kind = k;
+            o->first = s->nreals;
+            int rc = shape_kinds[k].read(p);
+            o->count = s->nreals - o->first;
+            return rc;
+        }
+    return fail_expected(p, shape_keywords());
 }
 
-static int parse_objects(struct parser *p)
+static int parse_objects(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     size_t n = 0;
@@ -524,7 +554,7 @@ static int parse_objects(struct parser *p)
 
 /* ---- trailing directives ----------------------------------------------- */
 
-static int parse_samples(struct parser *p)
+static int parse_samples(struct scene_reader *p)
 {
     uint32_t n = 0;
     if (read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
@@ -535,7 +565,7 @@ static int parse_samples(struct parser *p)
     return 0;
 }
 
-static int parse_lens(struct parser *p)
+static int parse_lens(struct scene_reader *p)
 {
     if (read_bounded(p, &p->s.lens_radius, 1, "a non-negative lens radius") ||
         read_bounded(p, &p->s.lens_focal, 0, "a positive focal distance"))
@@ -544,7 +574,7 @@ static int parse_lens(struct parser *p)
     return 0;
 }
 
-static int parse_fog(struct parser *p)
+static int parse_fog(struct scene_reader *p)
 {
     if (read_numbers(p, p->s.fog_color, 3, NULL) ||
         read_bounded(p, &p->s.fog_density, 1, "a non-negative fog density"))
@@ -553,7 +583,7 @@ static int parse_fog(struct parser *p)
     return 0;
 }
 
-static int parse_arealight(struct parser *p)
+static int parse_arealight(struct scene_reader *p)
 {
     struct scene *s = &p->s;
     struct token at;
@@ -562,7 +592,7 @@ static int parse_arealight(struct parser *p)
                    &at))
         return -1;
     if (s->arealight_index == 0)
-        return fail_at(p, &at, "light 0 is the ambient light and cannot be "
+        return read_fail(p, &at, "light 0 is the ambient light and cannot be "
                                "an area light");
     if (read_bounded(p, &s->arealight_radius, 0,
                      "a positive area light radius") ||
@@ -576,7 +606,7 @@ static int parse_arealight(struct parser *p)
 
 struct directive {
     const char *name;
-    int (*parse)(struct parser *p);
+    int (*parse)(struct scene_reader *p);
 };
 
 static const struct directive directives[] = {
@@ -589,7 +619,7 @@ static const struct directive directives[] = {
 #define NDIRECTIVES (sizeof directives / sizeof directives[0])
 
 /* Directives until the end of the file, any order, each at most once. */
-static int parse_directives(struct parser *p)
+static int parse_directives(struct scene_reader *p)
 {
     struct token first[NDIRECTIVES];
     int seen[NDIRECTIVES] = { 0 };
@@ -601,7 +631,7 @@ static int parse_directives(struct parser *p)
             return fail_expected(p, "'samples', 'lens', 'fog', 'arealight' "
                                     "or end of file");
         if (seen[i])
-            return fail_at(p, &p->tok, "duplicate '%s' directive (first at "
+            return read_fail(p, &p->tok, "duplicate '%s' directive (first at "
                                        "%zu:%zu)", directives[i].name,
                            first[i].line, first[i].col);
         seen[i] = 1;
@@ -616,7 +646,7 @@ static int parse_directives(struct parser *p)
 /* ---- entry points ------------------------------------------------------ */
 
 /* The sections in file order; the first error stops everything. */
-static int parse_scene(struct parser *p)
+static int parse_scene(struct scene_reader *p)
 {
     if (parse_header(p) || parse_camera(p) || parse_lights(p) ||
         parse_pigments(p) || parse_finishes(p) || parse_objects(p) ||
@@ -628,7 +658,7 @@ static int parse_scene(struct parser *p)
 int scene_parse_text(const char *name, const char *text, size_t len,
                      struct scene *out, char *err, size_t errsize)
 {
-    struct parser p;
+    struct scene_reader p;
     memset(&p, 0, sizeof p);
     memset(out, 0, sizeof *out);
     p.name = name ? name : "<input>";
@@ -636,13 +666,16 @@ int scene_parse_text(const char *name, const char *text, size_t len,
     p.errsize = errsize;
     if (err && errsize > 0)
         err[0] = '\0';
-    if (lexer_init(&p.lx, text, len)) {
+    p.dir = folder_of(p.name);
+    if (!p.dir || lexer_init(&p.lx, text, len)) {
         lexer_free(&p.lx);
+        free(p.dir);
         return fail_oom(&p);
     }
     next(&p);
     int rc = parse_scene(&p);
     lexer_free(&p.lx);
+    free(p.dir);
     if (rc) {
         scene_free(&p.s);
         return -1;

@@ -15,7 +15,7 @@ struct Frame {
     vec4 area;        // x: arealight radius
     vec4 limits;      // x: bailout, the least weight a ray is traced with
     ivec4 counts;     // width, height, point lights, objects
-    ivec4 geometry;   // spheres, planes (after the spheres), BVH nodes
+    ivec4 geometry;   // bounded objects (BVH order), unbounded ones after them, BVH nodes
     ivec4 sampling;   // lattice generator, arealight index, arealight samples
 };
 
@@ -25,11 +25,13 @@ struct Light {
     vec4 att;
 };
 
+// What each kind keeps where: host/pigments.c.
 struct Pigment {
     vec4 color1;
     vec4 color2;
-    rvec4 params; // x: checker side
-    ivec4 kind;
+    rvec4 p;
+    rvec4 q;
+    ivec4 kind; // TP2_PIGMENT_*; texmap: first texel, width, height
 };
 
 struct Finish {
@@ -37,9 +39,12 @@ struct Finish {
     vec4 optics; // kr kt ior
 };
 
+// One primitive; what each kind keeps in a, b, c: host/shapes.c.
 struct Object {
-    rvec4 geom; // sphere: center, radius; plane: unit normal, d
-    ivec4 ids;  // kind, pigment, finish
+    rvec4 a;
+    rvec4 b;
+    rvec4 c;
+    ivec4 ids; // TP2_SHAPE_*, pigment, finish, first row in extra[]
 };
 
 struct BvhNode {
@@ -55,6 +60,9 @@ layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentB
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };
 layout(std430, set = 0, binding = TP2_BINDING_OBJECTS) readonly buffer ObjectBuf { Object objects[]; };
 layout(std430, set = 0, binding = TP2_BINDING_BVH) readonly buffer BvhBuf { BvhNode nodes[]; };
+layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { rvec4 extra[]; };
+// Texmap images: one word per texel, r | g << 8 | b << 16, rows top to bottom.
+layout(std430, set = 0, binding = TP2_BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
 // Ray counters as (low, high) pairs, then the vectors near lavapipe's limit.
 layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf {
@@ -70,16 +78,21 @@ layout(push_constant) uniform Tile {
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
 layout(constant_id = TP2_SPEC_REFRACT) const bool HAS_REFRACT = true;
-layout(constant_id = TP2_SPEC_CHECKER) const bool HAS_CHECKER = true;
-layout(constant_id = TP2_SPEC_PLANES) const bool HAS_PLANES = true;
+layout(constant_id = TP2_SPEC_PIGMENTS) const int PIGMENT_KINDS = -1;
+layout(constant_id = TP2_SPEC_SHAPES) const int SHAPE_KINDS = -1;
+layout(constant_id = TP2_SPEC_ONLY_SHAPE) const int ONLY_SHAPE = -1;
 layout(constant_id = TP2_SPEC_FOG) const bool HAS_FOG = false;
 layout(constant_id = TP2_SPEC_LENS) const bool HAS_LENS = false;
 layout(constant_id = TP2_SPEC_AREA) const bool HAS_AREA = false;
 layout(constant_id = TP2_SPEC_STATS) const bool COUNT_RAYS = false;
 layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
-layout(constant_id = TP2_SPEC_SPHERES) const bool HAS_SPHERES = true;
 layout(constant_id = TP2_SPEC_BVH) const bool USE_BVH = true;
 layout(constant_id = TP2_SPEC_LOOP_GUARD) const bool LOOP_GUARD = false;
+
+// Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
+// TP2_SHAPE_*): code for kinds it does not use is compiled out.
+#define USES_PIGMENT(k) ((PIGMENT_KINDS & (1 << (k))) != 0)
+#define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
 
 // One iteration of some loop: one lane per SIMD vector counts it, so the
 // vector's total is the sum over its lanes (see TP2_LOOP_LIMIT_NEAR).

@@ -5,30 +5,33 @@
 #ifndef TP2_SHARED_H
 #define TP2_SHARED_H
 
-/* Descriptor bindings, all storage buffers in set 0. */
+/* Descriptor bindings, all storage buffers in set 0. The scene's inputs
+ * come first, the image and the stats after them. */
 #define TP2_BINDING_FRAME 0
 #define TP2_BINDING_LIGHTS 1
 #define TP2_BINDING_PIGMENTS 2
 #define TP2_BINDING_FINISHES 3
 #define TP2_BINDING_OBJECTS 4
 #define TP2_BINDING_BVH 5
-#define TP2_BINDING_IMAGE 6
-#define TP2_BINDING_STATS 7
-#define TP2_BINDING_COUNT 8
+#define TP2_BINDING_EXTRA 6  /* rows objects need beyond their record */
+#define TP2_BINDING_TEXELS 7 /* texmap images, one RGBA8 word per texel */
+#define TP2_BINDING_IMAGE 8
+#define TP2_BINDING_STATS 9
+#define TP2_BINDING_COUNT 10
 
 /* Specialization constants: the pipeline is compiled for the features the
  * scene uses, so a scene without them pays nothing for them. */
-#define TP2_SPEC_REFLECT 0   /* bool: some finish has kr > 0 */
-#define TP2_SPEC_REFRACT 1   /* bool: some finish has kt > 0 */
-#define TP2_SPEC_CHECKER 2   /* bool: some pigment is a checker */
-#define TP2_SPEC_PLANES 3    /* bool: the scene has planes */
-#define TP2_SPEC_FOG 4       /* bool: fog directive */
-#define TP2_SPEC_LENS 5      /* bool: lens directive */
-#define TP2_SPEC_AREA 6      /* bool: arealight directive */
-#define TP2_SPEC_STATS 7     /* bool: count rays (--stats) */
-#define TP2_SPEC_SAMPLES 8   /* int: samples per pixel */
-#define TP2_SPEC_SPHERES 9   /* bool: the scene has spheres */
-#define TP2_SPEC_BVH 10      /* bool: spheres through the BVH, else a loop */
+#define TP2_SPEC_REFLECT 0    /* bool: some finish in use has kr > 0 */
+#define TP2_SPEC_REFRACT 1    /* bool: some finish in use has kt > 0 */
+#define TP2_SPEC_PIGMENTS 2   /* int: bit k set when TP2_PIGMENT_k is in use */
+#define TP2_SPEC_SHAPES 3     /* int: bit k set when TP2_SHAPE_k is in use */
+#define TP2_SPEC_ONLY_SHAPE 4 /* int: the one TP2_SHAPE_* in use, else -1 */
+#define TP2_SPEC_FOG 5        /* bool: fog directive */
+#define TP2_SPEC_LENS 6       /* bool: lens directive */
+#define TP2_SPEC_AREA 7       /* bool: arealight directive */
+#define TP2_SPEC_STATS 8      /* bool: count rays (--stats) */
+#define TP2_SPEC_SAMPLES 9    /* int: samples per pixel */
+#define TP2_SPEC_BVH 10       /* bool: bounded objects through the BVH, else a loop */
 #define TP2_SPEC_LOOP_GUARD 11 /* bool: count loop steps (lavapipe's limit) */
 #define TP2_SPEC_COUNT 12
 
@@ -50,11 +53,28 @@
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32
 
-/* Enumerations stored in ivec4 fields. */
+/* Pigment kinds (Pigment.kind.x); host/pigments.c maps keywords to them
+ * and shaders/pigments.glsl colors each. */
 #define TP2_PIGMENT_SOLID 0
 #define TP2_PIGMENT_CHECKER 1
-#define TP2_OBJECT_SPHERE 0
-#define TP2_OBJECT_PLANE 1
+#define TP2_PIGMENT_GRADIENT 2
+#define TP2_PIGMENT_TEXMAP 3
+
+/* Shape kinds (Object.ids.x); host/shapes.c maps keywords to them (a mesh
+ * is triangles) and shaders/shapes.glsl intersects each. */
+#define TP2_SHAPE_SPHERE 0
+#define TP2_SHAPE_PLANE 1
+#define TP2_SHAPE_POLYHEDRON 2
+#define TP2_SHAPE_BOX 3
+#define TP2_SHAPE_CYLINDER 4
+#define TP2_SHAPE_CONE 5
+#define TP2_SHAPE_TORUS 6
+#define TP2_SHAPE_QUADRIC 7
+#define TP2_SHAPE_TRIANGLE 8
+
+/* Most faces of one polyhedron: its face count travels as a float, exact
+ * to 2^24, and every ray that meets it loops over all of them. */
+#define TP2_MAX_FACES 4096
 
 /* SPEC 4: a ray at depth k > 10 returns the background. */
 #define TP2_MAX_DEPTH 10

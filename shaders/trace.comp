@@ -18,11 +18,13 @@
 // (self-hits are ruled out by Start, not by this).
 #ifdef TP2_DOUBLE
 #define real double
+#define rvec2 dvec2
 #define rvec3 dvec3
 #define rvec4 dvec4
 #define TP2_REL_EPS 5.6843418860808015e-14LF // 2^-44
 #else
 #define real float
+#define rvec2 vec2
 #define rvec3 vec3
 #define rvec4 vec4
 #define TP2_REL_EPS 9.5367431640625e-7 // 2^-20
@@ -31,6 +33,7 @@
 #include "layout.glsl"
 #include "random.glsl"
 #include "intersect.glsl"
+#include "pigments.glsl"
 #include "shade.glsl"
 
 layout(local_size_x = TP2_GROUP_X, local_size_y = TP2_GROUP_Y) in;
@@ -53,37 +56,75 @@ uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 
 // Traces one ray: adds what it sees to color and returns how many
 // children it spawns (0 to 2), the first in `first`, the other in `second`.
+//
+// Query 0 is the ray itself; queries 1.. are its hit's shadow rays, one
+// per light sample. One call of trace_scene serves them all, so the
+// intersection code of every kind is compiled once: drivers inline each
+// call, and compile time grows with the copies.
 int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ray second)
 {
     first = second = ray;
     vec3 gray = frame.background.rgb;
-    Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false);
-    if (h.object < 0) {
-        color += ray.weight * (HAS_FOG ? frame.fog.rgb : gray);
-        return 0;
-    }
     float weight = ray.weight;
-    if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
-        float keep = exp(-frame.fog.w * float(h.t));
-        color += weight * (1.0 - keep) * frame.fog.rgb;
-        weight *= keep;
+    Hit h;
+    Shading sh;
+    rvec3 n;
+    bool entering;
+    rvec3 offset;
+    vec3 local = vec3(0.0);
+    int queries = 1;
+    for (int q = 0; q < queries; ++q) {
+        TP2_STEP();
+        rvec3 o = ray.origin;
+        rvec3 d = ray.dir;
+        real tmax = NO_HIT;
+        Start start = ray.start;
+        vec3 lit = vec3(0.0);
+        if (q > 0) {
+            if (!light_ray(sh, q - 1, area_shift, d, tmax, lit))
+                continue;
+            o = sh.origin;
+            start = sh.start;
+            ++ray_tally[TP2_STAT_SHADOW];
+        }
+        Hit found = trace_scene(o, d, start, tmax, q > 0);
+        if (q > 0) {
+            if (found.object < 0)
+                local += lit;
+            continue;
+        }
+        h = found;
+        if (h.object < 0) {
+            color += weight * (HAS_FOG ? frame.fog.rgb : gray);
+            return 0;
+        }
+        if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
+            float keep = exp(-frame.fog.w * float(h.t));
+            color += weight * (1.0 - keep) * frame.fog.rgb;
+            weight *= keep;
+        }
+        real scale;
+        surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale);
+        entering = dot(ray.dir, n) < 0.0;
+        sh.nf = entering ? n : -n;
+        sh.view = -ray.dir;
+        offset = sh.nf * (scale * TP2_REL_EPS);
+        // Rays leaving on the incoming side start here, going along nf:
+        // into the object when the ray came from inside.
+        sh.origin = sh.p + offset;
+        sh.start = Start(h.object, !entering);
+        ivec4 ids = objects[h.object].ids;
+        sh.fin = finishes[ids.z];
+        sh.pig = pigment_color(ids.y, sh.p);
+        local = sh.fin.phong.x * frame.ambient.rgb * sh.pig;
+        queries = 1 + light_samples(sh.fin);
     }
-    Object obj = objects[h.object];
-    rvec3 p, n;
-    real scale;
-    surface_point(obj, ray.origin, ray.dir, h.t, p, n, scale);
-    bool entering = dot(ray.dir, n) < 0.0;
-    rvec3 nf = entering ? n : -n;
-    rvec3 offset = nf * (scale * TP2_REL_EPS);
-    bool is_sphere = obj.ids.x == TP2_OBJECT_SPHERE;
-    // Rays leaving on the incoming side start here, going along nf.
-    rvec3 outside = p + offset;
-    Start back = leaving(h.object, is_sphere, !entering);
-
-    Finish fin = finishes[obj.ids.z];
-    vec3 pig = pigment_color(obj.ids.y, p);
-    color += weight * local_color(fin, pig, p, nf, -ray.dir, ShadowStart(outside, back),
-                                  area_shift, ray_tally[TP2_STAT_SHADOW]);
+    color += weight * local;
+    rvec3 p = sh.p;
+    rvec3 nf = sh.nf;
+    rvec3 outside = sh.origin;
+    Start back = sh.start;
+    Finish fin = sh.fin;
 
     float kr = HAS_REFLECT ? fin.optics.x : 0.0;
     float kt = HAS_REFRACT ? fin.optics.y : 0.0;
@@ -105,12 +146,13 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ra
         real cosi = -dot(ray.dir, nf);
         real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
         Ray t;
-        if (k < 0.0) { // total internal reflection: the mirror direction
+        if (!has_inside(h.object)) { // SPEC 3: through a triangle unbent
+            t = Ray(p - offset, ray.dir, Start(h.object, entering), weight * kt, depth);
+        } else if (k < 0.0) { // total internal reflection: the mirror direction
             t = Ray(outside, ray.dir + 2.0 * cosi * nf, back, weight * kt, depth);
         } else {
             rvec3 dir_t = normalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
-            t = Ray(p - offset, dir_t, leaving(h.object, is_sphere, entering),
-                    weight * kt, depth);
+            t = Ray(p - offset, dir_t, Start(h.object, entering), weight * kt, depth);
         }
         if (children == 0)
             first = t;

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """check_error.py TP2 SCENE: tp2 must reject SCENE exactly as its first line says.
 
-SCENE's first line is `# expect: LINE:COL: error: MESSAGE`. The test runs
+SCENE's first line is `# expect: LINE:COL: error: MESSAGE`, or
+`# expect: FILE:LINE:COL: error: MESSAGE` for an error in another file
+(a mesh's OBJ) named relative to SCENE's folder. The test runs
 `tp2 SCENE out.ppm` in a fresh folder and checks: exit status 1, stderr is
-exactly one line `SCENE:LINE:COL: error: MESSAGE`, and no file appeared
-(neither out.ppm nor a temporary one)."""
+exactly one line `SCENE:LINE:COL: error: MESSAGE` (or FILE's path), and no
+file appeared (neither out.ppm nor a temporary one)."""
 import os
 import subprocess
 import sys
@@ -19,7 +21,12 @@ def main():
     if not first.startswith(prefix):
         print(f"{scene}: first line must start with '{prefix}'")
         return 1
-    expected = f"{scene}:{first[len(prefix):]}"
+    rest = first[len(prefix):]
+    where = scene
+    if not rest[:1].isdigit():
+        other, rest = rest.split(":", 1)
+        where = os.path.join(os.path.dirname(scene), other)
+    expected = f"{where}:{rest}"
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.ppm")
         r = subprocess.run([tp2, scene, out], capture_output=True, timeout=60)

@@ -288,9 +288,9 @@ struct buffer {
     F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, limits) F(T, counts)           \
     F(T, geometry) F(T, sampling)
 #define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
-#define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, params) F(T, kind)
+#define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
-#define OBJECT_FIELDS(F, T) F(T, geom) F(T, ids)
+#define OBJECT_FIELDS(F, T) F(T, a) F(T, b) F(T, c) F(T, ids)
 #define BVH_FIELDS(F, T) F(T, lo) F(T, first) F(T, hi) F(T, count)
 
 #define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
@@ -413,32 +413,36 @@ static void check_buffer(const struct spv *m, const struct buffer *b)
     check_struct(m, m->w[arr + 2], b);
 }
 
-/* The image buffer: a runtime array of vec4 (the host reads 4 floats per
- * pixel, image_write's rgba) at TP2_BINDING_IMAGE. */
-static void check_image(const struct spv *m)
+/* A buffer that is a runtime array of scalars or vectors (no struct): the
+ * image (vec4: the host reads 4 floats per pixel), the extra rows (rvec4:
+ * the host writes TP2_REAL[4]) and the texels (uint). */
+static void check_plain_array(const struct spv *m, const char *name, long binding,
+                              size_t elem_size, enum kind elem_kind, const char *what)
 {
     uint32_t block = 0;
     int count = 0;
-    uint32_t var = spv_find_buffer(m, "ImageBuf", &block, &count);
-    expect(count == 1, "%s: " "buffer ImageBuf: %d variables, want 1", m->label, count);
+    uint32_t var = spv_find_buffer(m, name, &block, &count);
+    expect(count == 1, "%s: " "buffer %s: %d variables, want 1", m->label, name, count);
     if (count != 1)
         return;
-    long binding = spv_decoration(m, var, DEC_BINDING);
-    expect(binding == TP2_BINDING_IMAGE, "%s: " "buffer ImageBuf: Binding %ld, want %d", m->label, binding, TP2_BINDING_IMAGE);
-    expect(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, "%s: " "buffer ImageBuf: DescriptorSet 0", m->label);
+    long b = spv_decoration(m, var, DEC_BINDING);
+    expect(b == binding, "%s: " "buffer %s: Binding %ld, want %ld", m->label, name, b, binding);
+    expect(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, "%s: " "buffer %s: DescriptorSet 0", m->label, name);
     size_t def = spv_def(m, block);
     size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 3
                      ? spv_def(m, m->w[def + 2])
                      : 0;
     int ok = spv_op(m, arr) == OP_TYPE_RUNTIME_ARRAY && spv_wc(m, arr) >= 3;
-    expect(ok, "%s: " "buffer ImageBuf: one runtime array member", m->label);
+    expect(ok, "%s: " "buffer %s: one runtime array member", m->label, name);
     if (!ok)
         return;
     enum kind kind = KIND_OTHER;
     size_t size = spv_type_size(m, m->w[arr + 2], &kind);
-    expect(size == 4 * sizeof(float) && kind == KIND_F32, "%s: " "pixels[]: element is vec4", m->label);
+    expect(size == elem_size && kind == elem_kind, "%s: " "%s: element is %s (%zu bytes of kind '%c')",
+           m->label, name, what, elem_size, elem_kind);
     long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
-    expect(stride == (long)(4 * sizeof(float)), "%s: " "pixels[]: ArrayStride %ld, want %zu", m->label, stride, 4 * sizeof(float));
+    expect(stride == (long)elem_size, "%s: " "%s: ArrayStride %ld, want %zu", m->label, name,
+           stride, elem_size);
 }
 
 /* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT], then uint
@@ -511,6 +515,7 @@ static void check_bindings(void)
     const long b[] = {TP2_BINDING_FRAME,    TP2_BINDING_LIGHTS,
                       TP2_BINDING_PIGMENTS, TP2_BINDING_FINISHES,
                       TP2_BINDING_OBJECTS,  TP2_BINDING_BVH,
+                      TP2_BINDING_EXTRA,    TP2_BINDING_TEXELS,
                       TP2_BINDING_IMAGE,    TP2_BINDING_STATS};
     size_t n = sizeof b / sizeof b[0];
     int ok = n == TP2_BINDING_COUNT;
@@ -523,7 +528,7 @@ static void check_bindings(void)
 }
 
 static void check_module(const struct spv *m, const struct buffer *buffers,
-                         size_t n)
+                         size_t n, size_t real_size, enum kind real_kind)
 {
     if (spv_validate(m) != 0)
         return;
@@ -531,7 +536,9 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
         check_c_table(m->label, &buffers[i]);
         check_buffer(m, &buffers[i]);
     }
-    check_image(m);
+    check_plain_array(m, "ImageBuf", TP2_BINDING_IMAGE, 4 * sizeof(float), KIND_F32, "vec4");
+    check_plain_array(m, "ExtraBuf", TP2_BINDING_EXTRA, 4 * real_size, real_kind, "rvec4");
+    check_plain_array(m, "TexelBuf", TP2_BINDING_TEXELS, sizeof(uint32_t), KIND_U32, "uint");
     check_stats(m);
     check_binding_set(m);
 }
@@ -543,8 +550,9 @@ int main(void)
     const struct spv d = {"double", test_spv_double,
                           sizeof test_spv_double / sizeof test_spv_double[0]};
     check_bindings();
-    check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0]);
-    check_module(&d, double_buffers,
-                 sizeof double_buffers / sizeof double_buffers[0]);
+    check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
+                 sizeof(float), KIND_F32);
+    check_module(&d, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
+                 sizeof(double), KIND_F64);
     return unit_report();
 }

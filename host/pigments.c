@@ -1,0 +1,131 @@
+/* pigments.c: the table of pigment kinds (see pigments.h).
+ *
+ * GPU records (layout.glsl's Pigment):
+ *   solid     color1
+ *   checker   color1 (even cells), color2 (odd), p.x = cube side
+ *   gradient  color1 at point p, color2 at p + 1 / q: the color is
+ *             mix(color1, color2, clamp((x - p) . q, 0, 1)),
+ *             q = (p1 - p0) / |p1 - p0|^2
+ *   texmap    p = the s row, q = the t row; the texture's texels, size
+ *             and place in the texel buffer come from scene_pack.c */
+#include "pigments.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "texture.h"
+#include "tp2_shared.h"
+#include "vec3.h"
+
+static int solid_read(struct scene_reader *r, struct scene_pigment *pg)
+{
+    return read_numbers(r, pg->color1, 3, NULL);
+}
+
+static void solid_pack(const struct scene_pigment *pg, struct pigment_record *rec)
+{
+    memcpy(rec->color1, pg->color1, sizeof rec->color1);
+}
+
+static int checker_read(struct scene_reader *r, struct scene_pigment *pg)
+{
+    if (read_numbers(r, pg->color1, 3, NULL) || read_numbers(r, pg->color2, 3, NULL))
+        return -1;
+    return read_bounded(r, &pg->scale, 0, "a positive checker cube side");
+}
+
+static void checker_pack(const struct scene_pigment *pg, struct pigment_record *rec)
+{
+    memcpy(rec->color1, pg->color1, sizeof rec->color1);
+    memcpy(rec->color2, pg->color2, sizeof rec->color2);
+    rec->p[0] = pg->scale;
+}
+
+static int gradient_read(struct scene_reader *r, struct scene_pigment *pg)
+{
+    struct token second;
+    if (read_numbers(r, pg->p0, 3, NULL) || read_numbers(r, pg->p1, 3, &second))
+        return -1;
+    if (pg->p0[0] == pg->p1[0] && pg->p0[1] == pg->p1[1] && pg->p0[2] == pg->p1[2])
+        return read_fail(r, &second, "gradient end points must differ");
+    return read_numbers(r, pg->color1, 3, NULL) || read_numbers(r, pg->color2, 3, NULL);
+}
+
+static void gradient_pack(const struct scene_pigment *pg, struct pigment_record *rec)
+{
+    double d[3], u[3];
+    vec3_sub(pg->p1, pg->p0, d);
+    double len = vec3_unit(d, u); /* no overflow in |d|^2 */
+    memcpy(rec->color1, pg->color1, sizeof rec->color1);
+    memcpy(rec->color2, pg->color2, sizeof rec->color2);
+    memcpy(rec->p, pg->p0, sizeof pg->p0);
+    for (int i = 0; i < 3; i++)
+        rec->q[i] = u[i] / len;
+}
+
+/* The texture at path, decoded once however many pigments name it. */
+static int add_texture(struct scene_reader *r, char *path, const struct token *at,
+                       size_t *index)
+{
+    struct scene *s = read_scene(r);
+    for (size_t i = 0; i < s->ntextures; i++)
+        if (strcmp(s->textures[i].path, path) == 0) {
+            free(path);
+            *index = i;
+            return 0;
+        }
+    struct texture_image img;
+    char why[256], quoted[LEXER_QUOTE_SIZE];
+    if (texture_load(path, &img, why, sizeof why) != 0) {
+        free(path);
+        token_describe(at, quoted, sizeof quoted);
+        return read_fail(r, at, "cannot read texture %s: %s", quoted, why);
+    }
+    struct scene_texture *grown = realloc(s->textures, (s->ntextures + 1) * sizeof *grown);
+    if (!grown) {
+        free(path);
+        free(img.rgb);
+        return read_fail(r, at, "out of memory for texture");
+    }
+    s->textures = grown;
+    s->textures[s->ntextures] = (struct scene_texture){
+        .path = path, .width = img.width, .height = img.height, .rgb = img.rgb};
+    *index = s->ntextures++;
+    return 0;
+}
+
+static int texmap_read(struct scene_reader *r, struct scene_pigment *pg)
+{
+    char *path = NULL;
+    struct token at;
+    if (read_file_name(r, "an image file name", &path, &at) ||
+        add_texture(r, path, &at, &pg->texture))
+        return -1;
+    return read_numbers(r, pg->s, 4, NULL) || read_numbers(r, pg->t, 4, NULL);
+}
+
+static void texmap_pack(const struct scene_pigment *pg, struct pigment_record *rec)
+{
+    memcpy(rec->p, pg->s, sizeof rec->p);
+    memcpy(rec->q, pg->t, sizeof rec->q);
+    rec->texture = (long)pg->texture;
+}
+
+const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
+    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack},
+    [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack},
+    [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack},
+    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack},
+};
+
+const char *pigment_keywords(void)
+{
+    static char text[128];
+    if (!text[0]) {
+        const char *words[PIGMENT_COUNT];
+        for (int k = 0; k < PIGMENT_COUNT; k++)
+            words[k] = pigment_kinds[k].keyword;
+        keyword_list(words, PIGMENT_COUNT, text, sizeof text);
+    }
+    return text;
+}

@@ -1,0 +1,44 @@
+/* pigments.h: every kind of pigment of SPEC 3, one table entry each.
+ *
+ * An entry says how the kind is written (keyword and reader, with
+ * positioned errors), what it is on the GPU (TP2_PIGMENT_*, whose color
+ * function lives in shaders/pigments.glsl) and how it packs into the GPU
+ * pigment record. */
+#ifndef TP2_PIGMENTS_H
+#define TP2_PIGMENTS_H
+
+#include "scene_reader.h"
+
+/* Host kinds; scene_pigment.kind holds one. */
+enum pigment {
+    PIGMENT_SOLID,
+    PIGMENT_CHECKER,
+    PIGMENT_GRADIENT,
+    PIGMENT_TEXMAP,
+    PIGMENT_COUNT
+};
+
+/* One pigment as the GPU record holds it (layout.glsl's Pigment), in
+ * double until packing. */
+struct pigment_record {
+    double color1[3], color2[3];
+    double p[4], q[4];
+    long texture; /* index into scene.textures, or -1 */
+};
+
+struct pigment_kind {
+    const char *keyword;
+    int gpu_kind; /* TP2_PIGMENT_* */
+    /* Reads what follows the keyword into pg, each parameter checked with
+     * a positioned error; a texmap decodes its image into the scene's
+     * textures. 0 or -1. */
+    int (*read)(struct scene_reader *r, struct scene_pigment *pg);
+    void (*pack)(const struct scene_pigment *pg, struct pigment_record *rec);
+};
+
+extern const struct pigment_kind pigment_kinds[PIGMENT_COUNT];
+
+/* "'solid', 'checker', 'gradient' or 'texmap'". */
+const char *pigment_keywords(void);
+
+#endif

@@ -1,0 +1,64 @@
+/* shapes.h: every kind of object of SPEC 3, one table entry each.
+ *
+ * An entry says how the kind is written (its keyword and reader, with a
+ * positioned error for each bad parameter), what it becomes on the GPU
+ * (TP2_SHAPE_*, whose hit_ and surface_ functions live in
+ * shaders/shapes.glsl), its bounds (or none), and how it packs into the
+ * GPU object record. A new kind is one entry here and its GLSL functions. */
+#ifndef TP2_SHAPES_H
+#define TP2_SHAPES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "scene_reader.h"
+
+/* Host kinds, in keyword order; scene_object.kind holds one. */
+enum shape {
+    SHAPE_SPHERE,
+    SHAPE_PLANE,
+    SHAPE_POLYHEDRON,
+    SHAPE_BOX,
+    SHAPE_CYLINDER,
+    SHAPE_CONE,
+    SHAPE_TORUS,
+    SHAPE_QUADRIC,
+    SHAPE_TRIANGLE,
+    SHAPE_MESH,
+    SHAPE_COUNT
+};
+
+/* One primitive as the GPU object record holds it (shaders/layout.glsl's
+ * Object): three rows of four numbers, in double until packing, and how
+ * many rows of the extra buffer it uses (polyhedron faces; a quadric's
+ * reference point). */
+struct shape_record {
+    double row[3][4];
+};
+
+struct shape_kind {
+    const char *keyword;
+    int gpu_kind; /* TP2_SHAPE_* */
+    /* Reads what follows the keyword, pushing the object's numbers
+     * (read_push), each checked with a positioned error. 0 or -1. */
+    int (*read)(struct scene_reader *r);
+    /* GPU primitives an object of n numbers makes: 1, but a mesh makes
+     * one per triangle. */
+    size_t (*primitives)(const double *p, size_t n);
+    /* Bounds of primitive k, containing it exactly (rounded outward);
+     * returns false when it is unbounded (a plane, a quadric, an open
+     * polyhedron), which every ray then tests. */
+    bool (*bounds)(const double *p, size_t n, size_t k, double lo[3], double hi[3]);
+    /* Rows of the extra buffer primitive k needs. */
+    size_t (*extra_rows)(const double *p, size_t n);
+    /* Fills primitive k's record and its extra rows. */
+    void (*pack)(const double *p, size_t n, size_t k, struct shape_record *rec,
+                 double (*extra)[4]);
+};
+
+extern const struct shape_kind shape_kinds[SHAPE_COUNT];
+
+/* "'sphere', 'plane', ... or 'mesh'", for "expected ..." messages. */
+const char *shape_keywords(void);
+
+#endif

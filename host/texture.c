@@ -1,0 +1,190 @@
+/* texture.c: image files to 8-bit RGB texels (see texture.h). */
+#include "texture.h"
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image.h>
+
+/* Largest image file read: far above any real texture (a 32 Mi-texel
+ * image as 16-bit ASCII PPM is about 600 MB). */
+#define TEXTURE_MAX_FILE ((size_t)1 << 30)
+
+static int why_said(char *why, size_t size, const char *text)
+{
+    if (why && size > 0)
+        snprintf(why, size, "%s", text);
+    return -1;
+}
+
+/* ---- PPM --------------------------------------------------------------- */
+
+struct ppm_cursor {
+    const unsigned char *p, *end;
+};
+
+static bool ppm_space(unsigned char c)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* Skips white space and '#' comments (to the end of the line). */
+static void ppm_skip(struct ppm_cursor *c)
+{
+    while (c->p < c->end) {
+        if (ppm_space(*c->p)) {
+            c->p++;
+        } else if (*c->p == '#') {
+            while (c->p < c->end && *c->p != '\n' && *c->p != '\r')
+                c->p++;
+        } else {
+            break;
+        }
+    }
+}
+
+/* Reads a decimal number of at most 9 digits; -1 if there is none. */
+static long ppm_number(struct ppm_cursor *c)
+{
+    ppm_skip(c);
+    long v = 0;
+    int digits = 0;
+    while (c->p < c->end && *c->p >= '0' && *c->p <= '9' && digits < 10) {
+        v = v * 10 + (*c->p++ - '0');
+        digits++;
+    }
+    if (digits == 0 || digits > 9)
+        return -1;
+    return v;
+}
+
+int texture_decode_ppm(const unsigned char *data, size_t len,
+                       struct texture_image *out, char *why, size_t whysize)
+{
+    memset(out, 0, sizeof *out);
+    struct ppm_cursor c = {data, data + len};
+    if (len < 2 || data[0] != 'P' || (data[1] != '3' && data[1] != '6'))
+        return why_said(why, whysize, "not a P3 or P6 PPM image");
+    bool ascii = data[1] == '3';
+    c.p += 2;
+    long w = ppm_number(&c), h = ppm_number(&c), maxval = ppm_number(&c);
+    if (w < 1 || h < 1 || maxval < 1 || maxval > 65535)
+        return why_said(why, whysize, "malformed PPM header (width, height and "
+                                      "a maxval from 1 to 65535 expected)");
+    if ((size_t)w * (size_t)h > TEXTURE_MAX_TEXELS)
+        return why_said(why, whysize, "image too large (at most 32 Mi texels)");
+    /* Binary data starts after exactly one white space byte. */
+    if (!ascii && (c.p >= c.end || !ppm_space(*c.p++)))
+        return why_said(why, whysize, "malformed PPM header");
+    size_t n = (size_t)w * (size_t)h * 3;
+    out->rgb = malloc(n);
+    if (!out->rgb)
+        return why_said(why, whysize, "out of memory");
+    int bytes = maxval > 255 ? 2 : 1;
+    if (!ascii && (size_t)(c.end - c.p) / (size_t)bytes < n) {
+        free(out->rgb);
+        out->rgb = NULL;
+        return why_said(why, whysize, "PPM data ends early");
+    }
+    for (size_t i = 0; i < n; i++) {
+        long v;
+        if (ascii) {
+            v = ppm_number(&c);
+        } else {
+            v = bytes == 2 ? (long)c.p[0] << 8 | c.p[1] : c.p[0];
+            c.p += bytes;
+        }
+        if (v < 0 || v > maxval) {
+            free(out->rgb);
+            out->rgb = NULL;
+            return why_said(why, whysize, v < 0 ? "PPM data ends early or is malformed"
+                                                : "PPM value above its maxval");
+        }
+        out->rgb[i] = (uint8_t)((v * 255 * 2 + maxval) / (2 * maxval));
+    }
+    out->width = (int)w;
+    out->height = (int)h;
+    return 0;
+}
+
+/* ---- files ------------------------------------------------------------- */
+
+/* The whole file in a new buffer, or NULL with errno set. */
+static unsigned char *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    size_t cap = 1 << 16, n = 0;
+    unsigned char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n, f);
+        if (ferror(f)) {
+            int saved = errno ? errno : EIO;
+            free(buf);
+            fclose(f);
+            errno = saved;
+            return NULL;
+        }
+        if (n < cap)
+            break;
+        unsigned char *bigger = cap < TEXTURE_MAX_FILE ? realloc(buf, cap * 2) : NULL;
+        if (!bigger) {
+            free(buf);
+            fclose(f);
+            errno = cap < TEXTURE_MAX_FILE ? ENOMEM : EFBIG;
+            return NULL;
+        }
+        buf = bigger;
+        cap *= 2;
+    }
+    fclose(f);
+    if (!buf)
+        errno = ENOMEM;
+    *len = n;
+    return buf;
+}
+
+int texture_load(const char *path, struct texture_image *out, char *why,
+                 size_t whysize)
+{
+    memset(out, 0, sizeof *out);
+    size_t len = 0;
+    errno = 0;
+    unsigned char *data = read_file(path, &len);
+    if (!data)
+        return why_said(why, whysize, strerror(errno ? errno : EIO));
+    int rc = -1;
+    if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6')) {
+        rc = texture_decode_ppm(data, len, out, why, whysize);
+    } else {
+        int w = 0, h = 0, comp = 0;
+        if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp)) {
+            why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
+        } else if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS) {
+            why_said(why, whysize, "image too large (at most 32 Mi texels)");
+        } else {
+            /* Copied so that rgb is always ours to free(). */
+            stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
+            size_t n = (size_t)w * (size_t)h * 3;
+            if (!img) {
+                if (why && whysize > 0)
+                    snprintf(why, whysize, "cannot decode the image (%s)",
+                             stbi_failure_reason());
+            } else if (!(out->rgb = malloc(n))) {
+                why_said(why, whysize, "out of memory");
+            } else {
+                memcpy(out->rgb, img, n);
+                out->width = w;
+                out->height = h;
+                rc = 0;
+            }
+            stbi_image_free(img);
+        }
+    }
+    free(data);
+    return rc;
+}

@@ -1,0 +1,34 @@
+/* texture.h: decoding the images a texmap pigment names (SPEC 3).
+ *
+ * BMP, PNG and JPEG (and the other formats it knows) through stb_image,
+ * Debian's libstb: a well-kept decoder beats a hand-written one. PPM
+ * through a small reader of our own, since stb_image reads neither ASCII
+ * P3 nor maxvals other than 255 and 65535 (it does not scale them). */
+#ifndef TP2_TEXTURE_H
+#define TP2_TEXTURE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Most texels in one image: 32 Mi texels of 4 bytes fill lavapipe's
+ * largest storage buffer (128 MiB). */
+#define TEXTURE_MAX_TEXELS ((size_t)1 << 25)
+
+struct texture_image {
+    int width, height;
+    uint8_t *rgb; /* width * height * 3 bytes, rows top to bottom */
+};
+
+/* Decodes the image file at path into *out (free rgb with free()).
+ * Returns 0, or -1 with *out zeroed and a reason written to why (no file
+ * name in it: "No such file or directory", "not a BMP, PNG, JPEG or PPM
+ * image", "PPM data ends early", ...). */
+int texture_load(const char *path, struct texture_image *out, char *why,
+                 size_t whysize);
+
+/* Decodes a PPM (P3 or P6, '#' comments, maxval 1..65535) held in memory;
+ * as texture_load. Values are scaled to 8 bits, round(255 v / maxval). */
+int texture_decode_ppm(const unsigned char *data, size_t len,
+                       struct texture_image *out, char *why, size_t whysize);
+
+#endif

@@ -1,0 +1,519 @@
+// shapes.glsl: each kind of primitive's intersection (hit_KIND) and surface
+// (surface_KIND). What each keeps in its record is listed in host/shapes.c.
+//
+// Every hit_KIND returns the nearest t > 0 of object i along the ray o + t d
+// (|d| = 1), or NO_HIT, and the part of it that was hit (a face, a cap).
+// `on` says the ray starts on this very object's surface (rounding must not
+// let it hit that point again), `inward` that it goes into its inside;
+// each kind applies its own rule:
+//  - convex solids (sphere, polyhedron, box, cylinder, cone): leaving
+//    outward never meets them again; going inward meets only the exit;
+//  - flat ones (plane, triangle): never met again;
+//  - torus and quadric: the polynomial in t has a root at 0, divided out.
+// Every surface_KIND gives the hit point moved onto the surface (removing
+// the error of o + t d), the outward unit normal, and the size of the
+// numbers that made it (what the offset of new rays scales with).
+
+real max_abs(rvec3 p)
+{
+    rvec3 a = abs(p);
+    return max(a.x, max(a.y, a.z));
+}
+
+// Moves o along the ray to where it passes closest to c and returns how
+// far: quadratics and quartics formed there keep the size of the object,
+// not of the distance, however far the camera.
+real recenter(rvec3 c, inout rvec3 o, rvec3 d)
+{
+    real t0 = dot(c - o, d);
+    o += t0 * d;
+    return t0;
+}
+
+// ---- convex solids: the span of t inside them -------------------------
+
+struct Span {
+    real t_in, t_out;      // may be -NO_HIT / NO_HIT: no bound on that side
+    int part_in, part_out; // the part crossed there
+};
+
+const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0);
+
+// Narrows s to [t0, t1], entering through part p0, leaving through p1.
+void clip(inout Span s, real t0, real t1, int p0, int p1)
+{
+    if (t0 > s.t_in) {
+        s.t_in = t0;
+        s.part_in = p0;
+    }
+    if (t1 < s.t_out) {
+        s.t_out = t1;
+        s.part_out = p1;
+    }
+}
+
+// Clips s by the slab lo <= oa + t da <= hi of a ray whose coordinate along
+// an axis is oa + t da; parts p_lo and p_hi are its two faces.
+void clip_slab(inout Span s, real oa, real da, real lo, real hi, int p_lo, int p_hi)
+{
+    if (da == 0.0) {
+        if (oa < lo || oa > hi)
+            s.t_in = NO_HIT; // parallel and outside: empty
+        return;
+    }
+    real t_lo = (lo - oa) / da;
+    real t_hi = (hi - oa) / da;
+    if (da > 0.0)
+        clip(s, t_lo, t_hi, p_lo, p_hi);
+    else
+        clip(s, t_hi, t_lo, p_hi, p_lo);
+}
+
+// The hit a convex solid's span gives (see the rules at the top).
+real convex_hit(Span s, bool on, bool inward, out int part)
+{
+    part = s.part_out;
+    if (!(s.t_in <= s.t_out))
+        return NO_HIT;
+    if (on)
+        return inward && s.t_out > 0.0 ? s.t_out : NO_HIT;
+    if (s.t_in > 0.0) {
+        part = s.part_in;
+        return s.t_in;
+    }
+    return s.t_out > 0.0 ? s.t_out : NO_HIT;
+}
+
+// ---- sphere: a = center, radius ----------------------------------------
+
+// The discriminant comes from the ray's closest approach to the center
+// rather than b^2 - c, which cancels catastrophically for far-away
+// spheres; the near root from c / q (no subtraction of near equals).
+real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
+{
+    if (on && !inward)
+        return NO_HIT;
+    rvec4 sphere = objects[i].a;
+    rvec3 oc = o - sphere.xyz;
+    real r = sphere.w;
+    real b = dot(oc, d);
+    rvec3 closest = oc - b * d;
+    real disc = r * r - dot(closest, closest);
+    if (disc < 0.0)
+        return NO_HIT;
+    real q = -b - (b < 0.0 ? -sqrt(disc) : sqrt(disc));
+    real c = dot(oc, oc) - r * r;
+    real t0 = q != 0.0 ? c / q : real(0.0);
+    real near_t = min(t0, q);
+    real far_t = max(t0, q);
+    if (near_t > 0.0 && !on)
+        return near_t;
+    return far_t > 0.0 ? far_t : NO_HIT;
+}
+
+void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale)
+{
+    rvec4 sphere = objects[i].a;
+    n = normalize(p - sphere.xyz);
+    p = sphere.xyz + sphere.w * n;
+    scale = max_abs(sphere.xyz) + sphere.w;
+}
+
+// ---- plane: a = unit normal, distance ----------------------------------
+
+// t > 0 where the ray meets n.x + dist = 0.
+real plane_t(rvec4 plane, rvec3 o, rvec3 d)
+{
+    real denom = dot(plane.xyz, d);
+    if (denom == 0.0)
+        return NO_HIT;
+    real t = -(dot(plane.xyz, o) + plane.w) / denom;
+    return t > 0.0 ? t : NO_HIT;
+}
+
+real hit_plane(int i, rvec3 o, rvec3 d, bool on)
+{
+    return on ? NO_HIT : plane_t(objects[i].a, o, d);
+}
+
+// p moved onto plane (unit normal, distance), and its normal.
+void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
+{
+    n = plane.xyz;
+    p -= (dot(n, p) + plane.w) * n;
+    scale = max(max_abs(p), abs(plane.w));
+}
+
+// ---- polyhedron: a.x = face count; faces in extra[] as planes -----------
+
+// The faces whose outward normals point against the ray are where it
+// enters; the latest such entry and the earliest exit bound the span.
+real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+{
+    int first = objects[i].ids.w;
+    int faces = int(objects[i].a.x);
+    Span s = WHOLE_LINE;
+    for (int k = 0; k < faces; ++k) {
+        TP2_STEP();
+        rvec4 f = extra[first + k];
+        real denom = dot(f.xyz, d);
+        real dist = dot(f.xyz, o) + f.w; // > 0: o is outside this face
+        if (denom == 0.0) {
+            if (dist > 0.0)
+                return NO_HIT;
+        } else {
+            real t = -dist / denom;
+            if (denom < 0.0)
+                clip(s, t, NO_HIT, k, k);
+            else
+                clip(s, -NO_HIT, t, k, k);
+        }
+    }
+    return convex_hit(s, on, inward, part);
+}
+
+void surface_polyhedron(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
+{
+    onto_plane(extra[objects[i].ids.w + part], p, n, scale);
+}
+
+// ---- box: a = min corner, b = max corner --------------------------------
+
+// Parts: axis + 3 for the face at the max corner.
+real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+{
+    rvec3 lo = objects[i].a.xyz;
+    rvec3 hi = objects[i].b.xyz;
+    Span s = WHOLE_LINE;
+    clip_slab(s, o.x, d.x, lo.x, hi.x, 0, 3);
+    clip_slab(s, o.y, d.y, lo.y, hi.y, 1, 4);
+    clip_slab(s, o.z, d.z, lo.z, hi.z, 2, 5);
+    return convex_hit(s, on, inward, part);
+}
+
+// The face's coordinate is exact: the point is put on it.
+void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
+{
+    int axis = part % 3;
+    bool high = part >= 3;
+    rvec3 corner = high ? objects[i].b.xyz : objects[i].a.xyz;
+    n = rvec3(0.0);
+    n[axis] = high ? 1.0 : -1.0;
+    p[axis] = corner[axis];
+    scale = max(max_abs(p), max(max_abs(objects[i].a.xyz), max_abs(objects[i].b.xyz)));
+}
+
+// ---- cylinder: a = base center, radius; b = unit axis, length -----------
+// ---- cone: the same with a.w = r0 at the base and c.x = r1 at the top ----
+// Parts: 0 the side, 1 the base cap, 2 the top cap.
+
+// The span inside the solid cone or cylinder: the side's quadratic, the
+// slab between the caps. Its radius at height z along the axis is
+// r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
+// r0 + k z >= 0, which the slab keeps (both radii are >= 0).
+real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+{
+    rvec4 base = objects[i].a;
+    rvec4 axis = objects[i].b;
+    real h = axis.w;
+    real k = (r1 - base.w) / h;
+    real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
+    rvec3 oc = o - base.xyz;
+    real oa = dot(oc, axis.xyz);
+    real da = dot(d, axis.xyz);
+    rvec3 op = oc - oa * axis.xyz;
+    rvec3 dp = d - da * axis.xyz;
+    real rho = base.w + k * oa; // the radius at the origin's height
+    real slope = k * da;        // how fast the radius grows along the ray
+    Span s = WHOLE_LINE;
+    clip_slab(s, oa, da, 0.0, h, 1, 2);
+    rvec2 r;
+    real qa = dot(dp, dp) - slope * slope;
+    int n = quadratic_roots(qa, 2.0 * (dot(op, dp) - rho * slope), dot(op, op) - rho * rho, r);
+    if (n == 2 && qa > 0.0) {
+        clip(s, r.x, r.y, 0, 0);
+    } else if (n == 2) { // steeper than the side: the half-line on our nappe
+        if (slope > 0.0)
+            clip(s, r.y, NO_HIT, 0, 0);
+        else
+            clip(s, -NO_HIT, r.x, 0, 0);
+    } else if (n == 1) { // parallel to the side: one crossing
+        bool below = 2.0 * (dot(op, dp) - rho * slope) > 0.0; // Q < 0 before it
+        if (below)
+            clip(s, -NO_HIT, r.x, 0, 0);
+        else
+            clip(s, r.x, NO_HIT, 0, 0);
+    } else if (qa > 0.0 || (qa == 0.0 && dot(op, op) > rho * rho)) {
+        return NO_HIT; // outside the side all along (else inside all along)
+    }
+    s.t_in += t0;
+    s.t_out += t0;
+    return convex_hit(s, on, inward, part);
+}
+
+// The radius at the top: a cylinder's is its radius.
+real top_radius(int i, int kind)
+{
+    return kind == TP2_SHAPE_CYLINDER ? objects[i].a.w : objects[i].c.x;
+}
+
+void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out real scale)
+{
+    rvec4 base = objects[i].a;
+    rvec4 axis = objects[i].b;
+    rvec3 y = p - base.xyz;
+    real z = dot(y, axis.xyz);
+    scale = max_abs(p) + axis.w + max(base.w, r1);
+    if (part != 0) {
+        bool top = part == 2;
+        n = top ? axis.xyz : -axis.xyz;
+        p -= (z - (top ? axis.w : 0.0)) * axis.xyz;
+        return;
+    }
+    real k = (r1 - base.w) / axis.w;
+    rvec3 radial = y - z * axis.xyz;
+    real len = length(radial);
+    rvec3 e = len > 0.0 ? radial / len : rvec3(0.0);
+    n = len > 0.0 ? normalize(e - k * axis.xyz) : (k > 0.0 ? -axis.xyz : axis.xyz);
+    p = base.xyz + z * axis.xyz + (base.w + k * z) * e;
+}
+
+// ---- torus: a = center, R; b = unit axis, r ------------------------------
+
+// In units of R + r around the center: |x|^2 + R^2 - r^2)^2 =
+// 4 R^2 |x_perp|^2, a monic quartic in s along the ray, solved by
+// isolation (poly.glsl). A ray starting on it has the root s = 0, divided
+// out (a cubic). A spindle torus (R < r) also has the inner lemon
+// ((rho + R)^2 + z^2 = r^2) as roots; they are skipped.
+real hit_torus(int i, rvec3 o, rvec3 d, bool on)
+{
+    rvec4 ca = objects[i].a;
+    rvec4 ab = objects[i].b;
+    real size = ca.w + ab.w;
+    real t0 = on ? real(0.0) : recenter(ca.xyz, o, d);
+    rvec3 x = (o - ca.xyz) / size;
+    real R = ca.w / size, r = ab.w / size;
+    real alpha = dot(x, d);
+    real xx = dot(x, x);
+    real near_sq = alpha * alpha - xx + 1.0; // the unit bounding sphere
+    if (near_sq < 0.0)
+        return NO_HIT;
+    real lo = on ? real(0.0) : max(-alpha - sqrt(near_sq), -t0 / size);
+    real hi = -alpha + sqrt(near_sq);
+    if (!(lo < hi))
+        return NO_HIT;
+    real dz = dot(d, ab.xyz), xz = dot(x, ab.xyz);
+    real beta = xx + R * R - r * r;
+    real R4 = 4.0 * R * R;
+    rvec4 c = rvec4(beta * beta - R4 * (xx - xz * xz),
+                    4.0 * alpha * beta - 2.0 * R4 * (alpha - xz * dz),
+                    4.0 * alpha * alpha + 2.0 * beta - R4 * (1.0 - dz * dz),
+                    4.0 * alpha);
+    // On the surface: the roots of s^3 + c.w s^2 + c.z s + c.y, the
+    // quartic over s. Else the quartic's, cut where its slope (a cubic)
+    // is zero.
+    rvec4 roots;
+    rvec4 cubic = on ? rvec4(c.y, c.z, c.w, 1.0) : rvec4(c.y, 2.0 * c.z, 3.0 * c.w, 4.0);
+    int n = cubic_roots(cubic, lo, hi, roots);
+    if (!on)
+        n = roots_between(1.0, c, roots.xyz, n, lo, hi, roots);
+    for (int k = 0; k < n; ++k) {
+        rvec3 y = x + roots[k] * d;
+        real z = dot(y, ab.xyz);
+        real rho = length(y - z * ab.xyz);
+        real tube = (rho - R) * (rho - R) + z * z - r * r;
+        real lemon = (rho + R) * (rho + R) + z * z - r * r;
+        real t = t0 + roots[k] * size;
+        if (abs(tube) <= abs(lemon) && t > 0.0)
+            return t;
+    }
+    return NO_HIT;
+}
+
+// p moved onto the tube: r from the nearest point of the core circle.
+void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale)
+{
+    rvec4 ca = objects[i].a;
+    rvec4 ab = objects[i].b;
+    rvec3 y = p - ca.xyz;
+    real z = dot(y, ab.xyz);
+    rvec3 radial = y - z * ab.xyz;
+    real len = length(radial);
+    rvec3 core = len > 0.0 ? (ca.w / len) * radial : rvec3(0.0);
+    rvec3 w = y - core;
+    n = length(w) > 0.0 ? normalize(w) : (z >= 0.0 ? ab.xyz : -ab.xyz);
+    p = ca.xyz + core + ab.w * n;
+    scale = max_abs(ca.xyz) + ca.w + ab.w;
+}
+
+// ---- quadric: a = A B C D, b = E F G H, c.xy = I J about extra[ids.w] ----
+
+// M y for the symmetric matrix of the quadratic part.
+rvec3 quadric_m(int i, rvec3 y)
+{
+    rvec4 a = objects[i].a;
+    rvec4 b = objects[i].b;
+    return rvec3(a.x * y.x + 0.5 * (a.w * y.y + b.x * y.z),
+                 a.y * y.y + 0.5 * (a.w * y.x + b.y * y.z),
+                 a.z * y.z + 0.5 * (b.x * y.x + b.y * y.y));
+}
+
+rvec3 quadric_g(int i)
+{
+    return rvec3(objects[i].b.zw, objects[i].c.x);
+}
+
+real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
+{
+    rvec3 ref = extra[objects[i].ids.w].xyz;
+    real t0 = on ? real(0.0) : recenter(ref, o, d);
+    rvec3 y = o - ref;
+    rvec3 g = quadric_g(i);
+    rvec3 md = quadric_m(i, d);
+    real qa = dot(d, md);
+    real qb = 2.0 * dot(y, md) + dot(g, d);
+    if (on) // the root at 0 divided out: qa s + qb = 0
+        return qa != 0.0 && -qb / qa > 0.0 ? -qb / qa : NO_HIT;
+    real qc = dot(y, quadric_m(i, y)) + dot(g, y) + objects[i].c.y;
+    rvec2 r;
+    int n = quadratic_roots(qa, qb, qc, r);
+    if (n >= 1 && t0 + r.x > 0.0)
+        return t0 + r.x;
+    return n == 2 && t0 + r.y > 0.0 ? t0 + r.y : NO_HIT;
+}
+
+// One Newton step onto Q = 0 along the gradient, which points outward
+// (toward Q > 0).
+void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
+{
+    rvec3 ref = extra[objects[i].ids.w].xyz;
+    rvec3 y = p - ref;
+    rvec3 my = quadric_m(i, y);
+    rvec3 g = quadric_g(i);
+    rvec3 grad = 2.0 * my + g;
+    real q = dot(y, my) + dot(g, y) + objects[i].c.y;
+    real gg = dot(grad, grad);
+    if (gg > 0.0) {
+        p -= (q / gg) * grad;
+        n = normalize(grad);
+    } else { // a singular point (a cone's apex): face the ray
+        n = -d;
+    }
+    scale = max_abs(p);
+}
+
+// ---- triangle: a, b, c = corners, unit normal in their w ---------------
+
+// Watertight (Woop, Benthin and Wald 2013): the ray becomes the z axis by
+// a permutation and a shear, and each edge's side is decided by a 2D
+// cross product computed the same way for the two triangles sharing it, so
+// no ray slips between them.
+real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
+{
+    if (on)
+        return NO_HIT;
+    rvec3 ad = abs(d);
+    // Permute so that z is d's largest component, keeping the winding.
+    ivec3 k = ad.x > ad.y ? (ad.x > ad.z ? ivec3(1, 2, 0) : ivec3(0, 1, 2))
+                          : (ad.y > ad.z ? ivec3(2, 0, 1) : ivec3(0, 1, 2));
+    if (d[k.z] < 0.0)
+        k.xy = k.yx;
+    rvec3 shear = rvec3(d[k.x], d[k.y], 1.0) / d[k.z];
+    rvec3 a = objects[i].a.xyz - o;
+    rvec3 b = objects[i].b.xyz - o;
+    rvec3 c = objects[i].c.xyz - o;
+    rvec3 pa = rvec3(a[k.x], a[k.y], a[k.z]);
+    rvec3 pb = rvec3(b[k.x], b[k.y], b[k.z]);
+    rvec3 pc = rvec3(c[k.x], c[k.y], c[k.z]);
+    rvec2 sa = pa.xy - shear.xy * pa.z;
+    rvec2 sb = pb.xy - shear.xy * pb.z;
+    rvec2 sc = pc.xy - shear.xy * pc.z;
+    real u = sc.x * sb.y - sc.y * sb.x;
+    real v = sa.x * sc.y - sa.y * sc.x;
+    real w = sb.x * sa.y - sb.y * sa.x;
+    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0))
+        return NO_HIT;
+    real det = u + v + w;
+    if (det == 0.0)
+        return NO_HIT;
+    real t = (u * pa.z + v * pb.z + w * pc.z) * shear.z / det;
+    return t > 0.0 ? t : NO_HIT;
+}
+
+void surface_triangle(int i, inout rvec3 p, out rvec3 n, out real scale)
+{
+    rvec4 a = objects[i].a;
+    n = rvec3(a.w, objects[i].b.w, objects[i].c.w);
+    p -= dot(p - a.xyz, n) * n;
+    scale = max_abs(p) + max_abs(a.xyz - p);
+}
+
+// ---- by kind -----------------------------------------------------------
+
+// Object i's kind; a constant when the scene has one kind only.
+int shape_of(int i)
+{
+    return ONLY_SHAPE >= 0 ? ONLY_SHAPE : objects[i].ids.x;
+}
+
+// Object i's nearest t > 0 and part (see the top of this file).
+real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+{
+    part = 0;
+    int kind = shape_of(i);
+    if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
+        return hit_sphere(i, o, d, on, inward);
+    if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
+        return hit_plane(i, o, d, on);
+    if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
+        return hit_triangle(i, o, d, on);
+    if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
+        return hit_box(i, o, d, on, inward, part);
+    if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
+        return hit_polyhedron(i, o, d, on, inward, part);
+    if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
+        (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
+        return hit_tapered(i, top_radius(i, kind), o, d, on, inward, part);
+    if (USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS)
+        return hit_torus(i, o, d, on);
+    if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC)
+        return hit_quadric(i, o, d, on);
+    return NO_HIT;
+}
+
+// The hit point of object i at t (part from hit_object) moved onto its
+// surface, the outward unit normal there, and the scale of its numbers.
+void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
+                   out rvec3 p, out rvec3 n, out real scale)
+{
+    p = o + t * d;
+    int kind = shape_of(i);
+    if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
+        surface_sphere(i, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
+        onto_plane(objects[i].a, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
+        surface_triangle(i, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
+        surface_box(i, part, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
+        surface_polyhedron(i, part, p, n, scale);
+    else if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
+             (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
+        surface_tapered(i, top_radius(i, kind), part, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS)
+        surface_torus(i, p, n, scale);
+    else if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC)
+        surface_quadric(i, d, p, n, scale);
+    else {
+        n = -d;
+        scale = max_abs(p);
+    }
+}
+
+// Whether a ray through object i's surface goes into an inside (a
+// triangle has none: transmitted rays go on unbent).
+bool has_inside(int i)
+{
+    return !(USES_SHAPE(TP2_SHAPE_TRIANGLE) && shape_of(i) == TP2_SHAPE_TRIANGLE);
+}
