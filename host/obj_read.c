@@ -142,8 +142,10 @@ static int vertex_ref(struct obj_reader *r, char **s, size_t *index)
             end = q;
             continue;
         }
-        if (*q == '\0' || is_blank(*q))
+        if (*q == '\0' || is_blank(*q)) { /* an empty part: "1//" ends here */
+            end = q;
             break;
+        }
         char *qend = NULL;
         strtoll(q, &qend, 10);
         if (qend == q || (*qend && *qend != '/' && !is_blank(*qend))) {
