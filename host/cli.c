@@ -19,6 +19,8 @@ void cli_usage(FILE *out)
           "                       (default: discrete GPU, then integrated,\n"
           "                       then virtual, then CPU)\n"
           "  --list-devices       list the Vulkan devices and exit\n"
+          "  --dump-scene         print the scene as tp2 read it, as JSON, to\n"
+          "                       stdout and exit (no output file, no device)\n"
           "  --precision P        float (default) or double: double-precision\n"
           "                       geometry, the reference image\n"
           "  --spp N              samples per pixel (overrides the scene's\n"
@@ -86,6 +88,8 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
         c->help = true;
     } else if (strcmp(opt, "--list-devices") == 0) {
         c->list_devices = true;
+    } else if (strcmp(opt, "--dump-scene") == 0) {
+        c->dump_scene = true;
     } else if (strcmp(opt, "--validate") == 0) {
         c->validate = true;
     } else if (strcmp(opt, "--stats") == 0) {
@@ -153,6 +157,12 @@ int cli_parse(int argc, char **argv, struct cli *c)
         c->bailout = c->use_double ? 0.0 : TP2_DEFAULT_BAILOUT;
     if (c->help || c->list_devices)
         return 0;
+    if (c->dump_scene) {
+        if (npos != 1)
+            return usage_error("%s", "--dump-scene takes one scene file, and no output");
+        c->infile = positional[0];
+        return 0;
+    }
     if (npos != 2 && npos != 4)
         return usage_error("%s", npos < 2 ? "expected an input and an output file"
                                           : "expected both X and Y, or neither");

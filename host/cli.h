@@ -17,6 +17,7 @@ struct cli {
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */
+    bool dump_scene;   /* --dump-scene: print the parsed scene as JSON */
     bool help, list_devices;
 };
 

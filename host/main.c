@@ -8,6 +8,7 @@
 #include "image_write.h"
 #include "render.h"
 #include "scene.h"
+#include "scene_json.h"
 #include "scene_parse.h"
 #include "vk_context.h"
 
@@ -96,7 +97,7 @@ int main(int argc, char **argv)
     }
     if (c.list_devices)
         return vkc_list_devices(stdout) == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
-    if (image_format_of(c.outfile) == IMAGE_UNKNOWN) {
+    if (!c.dump_scene && image_format_of(c.outfile) == IMAGE_UNKNOWN) {
         fprintf(stderr, "tp2: cannot tell the format of '%s': name it .ppm, "
                         ".png or .pfm\n", c.outfile);
         return EXIT_USAGE;
@@ -108,7 +109,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s\n", err);
         return EXIT_FAILURE;
     }
-    int rc = render_to_file(&c, &s, clock_seconds() - t0);
+    int rc;
+    if (c.dump_scene)
+        rc = scene_write_json(&s, stdout) == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    else
+        rc = render_to_file(&c, &s, clock_seconds() - t0);
     scene_free(&s);
     return rc;
 }

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene_json.h"
 #include "texture.h"
 #include "tp2_shared.h"
 #include "vec3.h"
@@ -27,6 +28,12 @@ static void solid_pack(const struct scene_pigment *pg, struct pigment_record *re
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
 }
 
+static void solid_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
+{
+    (void)s;
+    json_numbers(out, "color", pg->color1, 3);
+}
+
 static int checker_read(struct scene_reader *r, struct scene_pigment *pg)
 {
     if (read_numbers(r, pg->color1, 3, NULL) || read_numbers(r, pg->color2, 3, NULL))
@@ -39,6 +46,15 @@ static void checker_pack(const struct scene_pigment *pg, struct pigment_record *
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
     memcpy(rec->color2, pg->color2, sizeof rec->color2);
     rec->p[0] = pg->scale;
+}
+
+static void checker_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
+{
+    (void)s;
+    json_numbers(out, "color1", pg->color1, 3);
+    fputs(", ", out);
+    json_numbers(out, "color2", pg->color2, 3);
+    fprintf(out, ", \"side\": %.17g", pg->scale);
 }
 
 static int gradient_read(struct scene_reader *r, struct scene_pigment *pg)
@@ -61,6 +77,18 @@ static void gradient_pack(const struct scene_pigment *pg, struct pigment_record 
     memcpy(rec->p, pg->p0, sizeof pg->p0);
     for (int i = 0; i < 3; i++)
         rec->q[i] = u[i] / len;
+}
+
+static void gradient_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
+{
+    (void)s;
+    json_numbers(out, "p0", pg->p0, 3);
+    fputs(", ", out);
+    json_numbers(out, "p1", pg->p1, 3);
+    fputs(", ", out);
+    json_numbers(out, "color0", pg->color1, 3);
+    fputs(", ", out);
+    json_numbers(out, "color1", pg->color2, 3);
 }
 
 /* The texture at path, decoded once however many pigments name it. */
@@ -111,11 +139,24 @@ static void texmap_pack(const struct scene_pigment *pg, struct pigment_record *r
     rec->texture = (long)pg->texture;
 }
 
+static void texmap_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
+{
+    const struct scene_texture *t = &s->textures[pg->texture];
+    fputs("\"file\": ", out);
+    json_string(out, t->path);
+    fprintf(out, ", \"width\": %d, \"height\": %d, ", t->width, t->height);
+    json_numbers(out, "s", pg->s, 4);
+    fputs(", ", out);
+    json_numbers(out, "t", pg->t, 4);
+}
+
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
-    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack},
-    [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack},
-    [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack},
-    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack},
+    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, solid_json},
+    [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack,
+                         checker_json},
+    [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
+                          gradient_json},
+    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_json},
 };
 
 const char *pigment_keywords(void)

@@ -7,6 +7,8 @@
 #ifndef TP2_PIGMENTS_H
 #define TP2_PIGMENTS_H
 
+#include <stdio.h>
+
 #include "scene_reader.h"
 
 /* Host kinds; scene_pigment.kind holds one. */
@@ -34,6 +36,9 @@ struct pigment_kind {
      * textures. 0 or -1. */
     int (*read)(struct scene_reader *r, struct scene_pigment *pg);
     void (*pack)(const struct scene_pigment *pg, struct pigment_record *rec);
+    /* Writes its fields for tp2 --dump-scene (scene_json.h): `"a": ...,
+     * "b": ...`, without braces. */
+    void (*json)(FILE *out, const struct scene *s, const struct scene_pigment *pg);
 };
 
 extern const struct pigment_kind pigment_kinds[PIGMENT_COUNT];

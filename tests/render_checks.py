@@ -24,6 +24,10 @@ import zlib
 from collections import namedtuple
 
 import tp2test
+from reference import (BACKGROUND, MAX_DEPTH, Plane, Sphere, add, attenuation, camera, dot,
+                       hadamard, hit, mul, nearest, norm, normal_at, nudge, pixel_ray, pixels,
+                       reflect, sub, the, trace, unit, without)
+import reference as model
 from tp2test import read_pfm, read_ppm, render
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -35,209 +39,10 @@ PPM_MARGIN = 1e-3     # skip a byte whose 255 c is this close to x.5
 EDGE = 1e-3           # world units: skip rays this close to a silhouette
 JITTER = 5e-5         # image-plane offset probing for a discontinuity
 JUMP = 0.02           # a change this big under JITTER is an edge
-BACKGROUND = (0.5, 0.5, 0.5)
 GRAY_BYTES = (128, 128, 128)  # round(255 * 0.5) = round(127.5), halves up
-MAX_DEPTH = 10
-NUDGE = 1e-9          # secondary rays start this far off the surface
 
-# ---------------------------------------------------------------- vectors
-
-
-def add(a, b):
-    """a + b."""
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def sub(a, b):
-    """a - b."""
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def mul(a, s):
-    """a scaled by the number s."""
-    return (a[0] * s, a[1] * s, a[2] * s)
-
-
-def hadamard(a, b):
-    """a times b channel by channel (colors)."""
-    return (a[0] * b[0], a[1] * b[1], a[2] * b[2])
-
-
-def dot(a, b):
-    """a . b."""
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a, b):
-    """a x b."""
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def norm(a):
-    """|a|."""
-    return math.sqrt(dot(a, a))
-
-
-def unit(a):
-    """a / |a|."""
-    return mul(a, 1 / norm(a))
-
-
-def reflect(d, n):
-    """d mirrored about the plane of unit normal n."""
-    return sub(d, mul(n, 2 * dot(d, n)))
-
-
-# ---------------------------------------------------------------- scene files
-
-Scene = namedtuple("Scene", "size eye center up fov ambient lights pigments finishes objects")
-Light = namedtuple("Light", "pos color att")
-Finish = namedtuple("Finish", "ka kd ks n kr kt ior")
-Solid = namedtuple("Solid", "color")
-Checker = namedtuple("Checker", "color1 color2 side")
-Sphere = namedtuple("Sphere", "pigment finish center radius")
-Plane = namedtuple("Plane", "pigment finish normal dist")  # unit normal . x + dist = 0
-
-NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
-
-
-def tokens(path):
-    """The file's tokens, numbers split the way strtod reads them (SPEC 2)."""
-    out = []
-    with open(path) as f:
-        for line in f:
-            for word in line.split("#", 1)[0].split():
-                while word and NUMBER.match(word):
-                    m = NUMBER.match(word)
-                    out.append(float(m.group()))
-                    word = word[m.end():]
-                if word:
-                    out.append(word)
-    return out
-
-
-class Reader:
-    """Takes a scene file's tokens in order."""
-
-    def __init__(self, path):
-        self.items = tokens(path)
-        self.pos = 0
-
-    def take(self):
-        """The next token."""
-        self.pos += 1
-        return self.items[self.pos - 1]
-
-    def vec(self):
-        """The next three numbers."""
-        return (self.take(), self.take(), self.take())
-
-    def count(self):
-        """The next number as a count."""
-        return int(self.take())
-
-
-def read_pigment(r):
-    """One pigment line."""
-    kind = r.take()
-    if kind == "solid":
-        return Solid(r.vec())
-    assert kind == "checker", f"pigment {kind} not handled here"
-    return Checker(r.vec(), r.vec(), r.take())
-
-
-def read_object(r):
-    """One object line."""
-    pigment, finish, kind = r.count(), r.count(), r.take()
-    if kind == "sphere":
-        return Sphere(pigment, finish, r.vec(), r.take())
-    assert kind == "plane", f"object {kind} not handled here"
-    n, d = r.vec(), r.take()
-    return Plane(pigment, finish, unit(n), d / norm(n))
-
-
-def load(name):
-    """Reads tests/render/NAME.txt (both variants; trailing directives ignored)."""
-    r = Reader(os.path.join(SCENES, name + ".txt"))
-    size = None
-    if isinstance(r.items[0], str):
-        r.take()
-        size = (r.count(), r.count())
-    eye, center, up, fov = r.vec(), r.vec(), r.vec(), r.take()
-    lights = [Light(r.vec(), r.vec(), r.vec()) for _ in range(r.count())]
-    pigments = [read_pigment(r) for _ in range(r.count())]
-    finishes = [Finish(*(r.take() for _ in range(7))) for _ in range(r.count())]
-    objects = [read_object(r) for _ in range(r.count())]
-    return Scene(size, eye, center, up, fov, lights[0].color, lights[1:], pigments,
-                 finishes, objects)
-
-
-def without(scene, kind):
-    """The scene with its objects of type kind removed."""
-    return scene._replace(objects=[o for o in scene.objects if not isinstance(o, kind)])
-
-
-# ---------------------------------------------------------------- geometry
-
-Camera = namedtuple("Camera", "eye u v w x_scale y_scale width height")
-
-
-def camera(scene, width, height):
-    """SPEC 4's camera basis for an image of width x height."""
-    w = unit(sub(scene.center, scene.eye))
-    u = unit(cross(w, scene.up))
-    v = cross(u, w)
-    t = math.tan(math.radians(scene.fov) / 2)
-    return Camera(scene.eye, u, v, w, t * width / height, t, width, height)
-
-
-def pixel_ray(cam, i, j, dx=0.0, dy=0.0):
-    """(origin, unit direction) through pixel (i, j)'s center, moved by
-    (dx, dy) on the image plane."""
-    x = (2 * (i + 0.5) / cam.width - 1) * cam.x_scale + dx
-    y = (1 - 2 * (j + 0.5) / cam.height) * cam.y_scale + dy
-    return cam.eye, unit(add(cam.w, add(mul(cam.u, x), mul(cam.v, y))))
-
-
-def pixels(cam):
-    """Every (i, j) of the image, row by row."""
-    return ((i, j) for j in range(cam.height) for i in range(cam.width))
-
-
-def hit_sphere(o, d, s):
-    """Nearest t > 0 where o + t d (d unit) meets sphere s, or None."""
-    oc = sub(o, s.center)
-    b = dot(oc, d)
-    disc = b * b - (dot(oc, oc) - s.radius ** 2)
-    if disc < 0:
-        return None
-    root = math.sqrt(disc)
-    return next((t for t in (-b - root, -b + root) if t > 0), None)
-
-
-def hit_plane(o, d, p):
-    """t > 0 where o + t d meets plane p, or None."""
-    denom = dot(p.normal, d)
-    if denom == 0:
-        return None
-    t = -(dot(p.normal, o) + p.dist) / denom
-    return t if t > 0 else None
-
-
-def hit(obj, o, d):
-    """t > 0 where the ray meets obj, or None."""
-    return hit_sphere(o, d, obj) if isinstance(obj, Sphere) else hit_plane(o, d, obj)
-
-
-def nearest(scene, o, d):
-    """(t, object) of the nearest hit, or None."""
-    hits = [(t, obj) for obj in scene.objects for t in [hit(obj, o, d)] if t is not None]
-    return min(hits, key=lambda h: h[0], default=None)
-
-
-def normal_at(obj, p):
-    """obj's outward unit normal at its surface point p."""
-    return unit(sub(p, obj.center)) if isinstance(obj, Sphere) else obj.normal
+# ---------------------------------------------------------------- the model
+# SPEC 4's model itself is in reference.py.
 
 
 def sphere_gap(o, d, s):
@@ -251,95 +56,6 @@ def segment_gap(a, b, s):
     ab = sub(b, a)
     t = min(max(dot(sub(s.center, a), ab) / dot(ab, ab), 0.0), 1.0)
     return norm(sub(add(a, mul(ab, t)), s.center)) - s.radius
-
-
-def the(scene, kind):
-    """The scene's first object of type kind."""
-    return next(o for o in scene.objects if isinstance(o, kind))
-
-
-def nudge(p, n):
-    """p moved off its surface along n (double precision self-hit guard)."""
-    return add(p, mul(n, NUDGE * (1 + norm(p))))
-
-
-# ---------------------------------------------------------------- SPEC 4
-
-
-def pigment_at(pig, p):
-    """The pigment's color at point p (SPEC 3)."""
-    if isinstance(pig, Solid):
-        return pig.color
-    k = sum(math.floor(x / pig.side) for x in p)
-    return pig.color1 if k % 2 == 0 else pig.color2
-
-
-def attenuation(light, dist):
-    """1 / (a + b d + c d^2), or 1 when a = b = c = 0."""
-    a, b, c = light.att
-    return 1.0 if a == b == c == 0 else 1 / (a + b * dist + c * dist * dist)
-
-
-def in_shadow(scene, origin, light):
-    """True if any object crosses the segment from origin to the light."""
-    to_light = sub(light.pos, origin)
-    dist = norm(to_light)
-    d = mul(to_light, 1 / dist)
-    return any(t is not None and t < dist for t in (hit(o, origin, d) for o in scene.objects))
-
-
-def light_term(scene, fin, pig, p, nf, view, light):
-    """att * C * (kd (Nf.L) P + ks max(0, R.V)^n) of one light, 0 if hidden."""
-    to_light = sub(light.pos, p)
-    dist = norm(to_light)
-    l = mul(to_light, 1 / dist)
-    ndotl = dot(nf, l)
-    if ndotl <= 0 or in_shadow(scene, nudge(p, nf), light):
-        return (0.0, 0.0, 0.0)
-    spec = fin.ks * max(0.0, dot(reflect(mul(l, -1), nf), view)) ** fin.n
-    shade = add(mul(pig, fin.kd * ndotl), (spec, spec, spec))
-    return mul(hadamard(light.color, shade), attenuation(light, dist))
-
-
-def local_color(scene, fin, pig, p, nf, view):
-    """ka C0 P plus every visible light's Phong term."""
-    color = mul(hadamard(scene.ambient, pig), fin.ka)
-    for light in scene.lights:
-        color = add(color, light_term(scene, fin, pig, p, nf, view, light))
-    return color
-
-
-def transmitted_ray(d, n, ior, p):
-    """(origin, direction, total) of the transmitted ray at p: bent by Snell's
-    law, or along the mirror direction under total internal reflection."""
-    entering = dot(d, n) < 0
-    nf, eta = (n, 1 / ior) if entering else (mul(n, -1), ior)
-    cosi = -dot(d, nf)
-    k = 1 - eta * eta * (1 - cosi * cosi)
-    if k < 0:
-        return nudge(p, nf), reflect(d, nf), True
-    bent = add(mul(d, eta), mul(nf, eta * cosi - math.sqrt(k)))
-    return nudge(p, mul(nf, -1)), unit(bent), False
-
-
-def trace(scene, o, d, depth=0):
-    """The color of ray o + t d at depth `depth` (SPEC 4)."""
-    found = nearest(scene, o, d) if depth <= MAX_DEPTH else None
-    if found is None:
-        return BACKGROUND
-    t, obj = found
-    p = add(o, mul(d, t))
-    n = normal_at(obj, p)
-    nf = n if dot(d, n) < 0 else mul(n, -1)
-    fin = scene.finishes[obj.finish]
-    pig = pigment_at(scene.pigments[obj.pigment], p)
-    color = local_color(scene, fin, pig, p, nf, mul(d, -1))
-    if fin.kr > 0:
-        color = add(color, mul(trace(scene, nudge(p, nf), reflect(d, nf), depth + 1), fin.kr))
-    if fin.kt > 0:
-        origin, direction, _ = transmitted_ray(d, n, fin.ior, p)
-        color = add(color, mul(trace(scene, origin, direction, depth + 1), fin.kt))
-    return color
 
 
 def reference(scene, cam, i, j):
@@ -452,6 +168,10 @@ def read_image(path):
 class Case(tp2test.Case):
     """A case with renders of tests/render/ scenes and pixel checks."""
 
+    def load(self, name):
+        """tests/render/NAME.txt as tp2 reads it (tp2 --dump-scene)."""
+        return model.load(self.tp2, os.path.join(SCENES, name + ".txt"))
+
     def render(self, name, ext="pfm", size=(), options=()):
         """Renders tests/render/NAME.txt to a file of type ext; its Image.
         --bailout 0: these cases check the exact model, unpruned (the
@@ -526,7 +246,7 @@ def front_lit(scene, sphere, light):
 
 def case_ambient_sphere(c):
     """Ambient only: a hit pixel is exactly round(255 ka C0 P), a miss is 128."""
-    scene = load("ambient_sphere")
+    scene = c.load("ambient_sphere")
     img = c.render("ambient_sphere", "ppm", (40, 30))
     sphere = scene.objects[0]
     want = ppm_bytes(ambient(scene, sphere))
@@ -558,7 +278,7 @@ def case_background(c):
 
 def case_diffuse(c):
     """One attenuated light, kd only: att C kd (N.L) P, at the axis and everywhere."""
-    scene = load("diffuse")
+    scene = c.load("diffuse")
     img = c.render("diffuse", "pfm", (41, 31))
     sphere, light = scene.objects[0], scene.lights[0]
     want = front_lit(scene, sphere, light)
@@ -568,7 +288,7 @@ def case_diffuse(c):
 
 def case_specular(c):
     """ks, exponent n: att C ks (R.V)^n where R.V = cos(light angle), and everywhere."""
-    scene = load("specular")
+    scene = c.load("specular")
     img = c.render("specular", "pfm", (41, 31))
     sphere, light = scene.objects[0], scene.lights[0]
     want = front_lit(scene, sphere, light)
@@ -590,7 +310,7 @@ def floor_pixels(scene, cam):
 def check_shadow(c, name):
     """Floor pixels in the sphere's shadow are ambient only; lit ones add the
     diffuse term att C kd (N.L) P."""
-    scene = load(name)
+    scene = c.load(name)
     img = c.render(name, "pfm", (48, 36))
     floor, ball = the(scene, Plane), the(scene, Sphere)
     light, fin = scene.lights[0], scene.finishes[floor.finish]
@@ -635,7 +355,7 @@ FAR_CELLS = 15
 def case_checker_parity(c):
     """Checker cells: color1 where floor(x/s)+floor(y/s)+floor(z/s) is even,
     color2 where odd, on both sides of 0 on every axis (floor, not truncation)."""
-    scene = load("checker_parity")
+    scene = c.load("checker_parity")
     pfm = c.render("checker_parity", "pfm", (48, 36))
     ppm = c.render("checker_parity", "ppm", (48, 36))
     pig = scene.pigments[0]
@@ -668,7 +388,7 @@ def mirror_value(a, kr, limit):
 
 def case_depth_limit(c):
     """Facing mirrors: sum_{k<=10} kr^k ka C0 P + kr^11 * 0.5, told apart from 9 and 11."""
-    scene = load("depth_limit")
+    scene = c.load("depth_limit")
     img = c.render("depth_limit", "pfm", (9, 7))
     a_mirror, b_mirror = scene.objects
     c.require(a_mirror[:2] == b_mirror[:2], "both mirrors must share pigment and finish")
@@ -690,7 +410,7 @@ def case_depth_limit(c):
 
 def case_refraction_straight(c):
     """A kt = 1, ior = 1 sphere is invisible: the wall is seen straight through it."""
-    scene = load("refraction_straight")
+    scene = c.load("refraction_straight")
     img = c.render("refraction_straight", "pfm", (40, 30))
     wall_only = without(scene, Sphere)
     cam = camera(scene, img.width, img.height)
@@ -706,7 +426,7 @@ def case_refraction_straight(c):
 
 def incidence_sine(o, d, sphere):
     """sin of the angle between the ray and the sphere's normal where it enters."""
-    p = add(o, mul(d, hit_sphere(o, d, sphere)))
+    p = add(o, mul(d, hit(sphere, o, d)))
     cosi = dot(d, normal_at(sphere, p))
     return math.sqrt(max(0.0, 1 - cosi * cosi)), p
 
@@ -714,7 +434,7 @@ def incidence_sine(o, d, sphere):
 def case_total_internal_reflection(c):
     """ior < 1: past the critical angle the transmitted ray follows the mirror
     direction (weighted by kt), seeing other things than a straight ray would."""
-    scene = load("total_internal_reflection")
+    scene = c.load("total_internal_reflection")
     img = c.render("total_internal_reflection", "pfm", (41, 31))
     cam = camera(scene, img.width, img.height)
     sphere = the(scene, Sphere)
@@ -740,7 +460,7 @@ def case_total_internal_reflection(c):
 def case_reflection(c):
     """A kr mirror floor shows kr times the sphere's color where the reflected
     ray meets the sphere, kr times gray where it does not."""
-    scene = load("reflection")
+    scene = c.load("reflection")
     img = c.render("reflection", "pfm", (40, 30))
     mirror, ball = the(scene, Plane), the(scene, Sphere)
     kr = scene.finishes[mirror.finish].kr
@@ -760,7 +480,7 @@ def case_reflection(c):
 
 def case_header_variant(c):
     """A file with a name and W H first renders at W x H, or at the command line's X Y."""
-    scene = load("header_variant")
+    scene = c.load("header_variant")
     img = c.render("header_variant", "ppm")
     c.expect((img.width, img.height) == scene.size,
              f"size {img.width}x{img.height}, want {scene.size}")
@@ -800,7 +520,7 @@ def expect_sphere_colors(c, scene, cam, pfm, ppm):
 def case_camera_orientation(c):
     """No flip, mirror or R/B swap; aspect and vertical fov: a sphere of angular
     radius atan(tan(fov/2)/2) on the axis spans the middle half of the rows."""
-    scene = load("camera_orientation")
+    scene = c.load("camera_orientation")
     size = (64, 32)
     pfm = c.render("camera_orientation", "pfm", size)
     ppm = c.render("camera_orientation", "ppm", size)
@@ -822,7 +542,7 @@ def case_camera_orientation(c):
 
 def case_light_attenuation_none(c):
     """a = b = c = 0: attenuation 1, so a far light still gives C kd (N.L) P."""
-    scene = load("light_attenuation_none")
+    scene = c.load("light_attenuation_none")
     img = c.render("light_attenuation_none", "pfm", (41, 31))
     sphere, light = scene.objects[0], scene.lights[0]
     want = front_lit(scene, sphere, light)
@@ -833,7 +553,7 @@ def case_light_attenuation_none(c):
 
 def case_clamp(c):
     """Values above 1 stay in the PFM and clamp to 255 in the PPM."""
-    scene = load("clamp")
+    scene = c.load("clamp")
     size = (40, 30)
     pfm, ppm = c.render("clamp", "pfm", size), c.render("clamp", "ppm", size)
     want = ambient(scene, scene.objects[0])
@@ -844,21 +564,21 @@ def case_clamp(c):
 def case_glass_sphere(c):
     """Every term at once (ambient, diffuse, specular, shadow, reflection,
     refraction with ior 1.5, checker) matches the model everywhere."""
-    scene = load("glass_sphere")
+    scene = c.load("glass_sphere")
     img = c.render("glass_sphere", "pfm", (48, 36))
     c.expect_most(c.expect_model(scene, img), img, 0.8, "glass sphere")
 
 
 def case_glass_sphere_double(c):
     """--precision double: the same scene within 1e-5 of the model."""
-    scene = load("glass_sphere")
+    scene = c.load("glass_sphere")
     img = c.render("glass_sphere", "pfm", (48, 36), ("--precision", "double"))
     c.expect_most(c.expect_model(scene, img, rel=1e-5), img, 0.8, "glass sphere, double")
 
 
 def case_two_lights(c):
     """Two colored lights with different attenuations add up."""
-    scene = load("two_lights")
+    scene = c.load("two_lights")
     img = c.render("two_lights", "pfm", (40, 30))
     c.expect_most(c.expect_model(scene, img), img, 0.3, "two lights")
 
@@ -869,6 +589,190 @@ def case_png_matches_ppm(c):
     png, ppm = c.render("glass_sphere", "png", size), c.render("glass_sphere", "ppm", size)
     c.expect((png.width, png.height) == size, f"PNG size {png.width}x{png.height}")
     c.expect(png.rows == ppm.rows, "PNG pixels differ from PPM pixels")
+
+
+# ---------------------------------------------------------------- more kinds
+
+
+def lit_closed_form(scene, obj, p, n):
+    """ka C0 P + att C (kd N.L P + ks (R.V)^n) at point p, normal n facing
+    the eye, pigment solid, one light, nothing in between: written out here,
+    not taken from the model."""
+    fin, light = scene.finishes[obj.finish], scene.lights[0]
+    pig = scene.pigments[obj.pigment].color
+    view = unit(sub(scene.eye, p))
+    to_light = sub(light.pos, p)
+    dist = norm(to_light)
+    l = mul(to_light, 1 / dist)
+    ndotl = dot(n, l)
+    r = sub(mul(n, 2 * ndotl), l)
+    spec = fin.ks * max(0.0, dot(r, view)) ** fin.n
+    a, b, cc = light.att
+    att = 1 / (a + b * dist + cc * dist * dist)
+    return tuple(fin.ka * scene.ambient[k] * pig[k] +
+                 att * light.color[k] * (fin.kd * ndotl * pig[k] + spec) for k in range(3))
+
+
+def case_box_face(c):
+    """A box face's diffuse and specular terms (N = +z on the axis), and the
+    whole image against the model."""
+    scene = c.load("box_face")
+    img = c.render("box_face", "pfm", (41, 31))
+    box = the(scene, model.Box)
+    want = lit_closed_form(scene, box, (0.0, 0.0, -5.0), (0.0, 0.0, 1.0))
+    c.expect_pixel(img, *center_pixel(img), want, "box face on the axis, closed form")
+    c.expect_most(c.expect_model(scene, img), img, 0.9, "box")
+
+
+def case_box_glass(c):
+    """A glass box: refraction through flat faces, inside reflections."""
+    scene = c.load("box_glass")
+    img = c.render("box_glass", "pfm", (48, 36))
+    c.expect_most(c.expect_model(scene, img), img, 0.7, "glass box")
+
+
+def case_polyhedron(c):
+    """A closed octahedron (mirror finish), an open wedge, a one-face floor."""
+    scene = c.load("polyhedron")
+    img = c.render("polyhedron", "pfm", (48, 36))
+    c.expect_most(c.expect_model(scene, img), img, 0.8, "polyhedra")
+
+
+def case_cylinder_cap(c):
+    """A cylinder's top cap on the axis (N = +z, closed form); a tilted glass
+    cylinder; everything against the model."""
+    scene = c.load("cylinder_cap")
+    img = c.render("cylinder_cap", "pfm", (41, 31))
+    cyl = the(scene, model.Cylinder)
+    want = lit_closed_form(scene, cyl, (0.0, 0.0, -5.0), (0.0, 0.0, 1.0))
+    c.expect_pixel(img, *center_pixel(img), want, "cap on the axis, closed form")
+    c.expect_most(c.expect_model(scene, img), img, 0.85, "cylinders")
+
+
+def case_cone_apex(c):
+    """A cone's side up to its apex and its base cap, a frustum; the model
+    everywhere, the apex's neighborhood included."""
+    scene = c.load("cone_apex")
+    img = c.render("cone_apex", "pfm", (48, 36))
+    cam = camera(scene, img.width, img.height)
+    cone = the(scene, model.Cone)
+    ai, aj = project(cam, cone.top)
+    near = 0
+    for i, j in pixels(cam):
+        want = reference(scene, cam, i, j)
+        if want is None:
+            continue
+        c.expect_pixel(img, i, j, want, "pixel")
+        near += abs(i - ai) <= 3 and abs(j - aj) <= 3
+    c.expect(near >= 10, f"only {near} pixels checked within 3 of the apex")
+
+
+def case_torus_hole(c):
+    """The ray on the axis passes through the torus's hole to the wall; the
+    ring around it is the torus; the model everywhere."""
+    scene = c.load("torus_hole")
+    img = c.render("torus_hole", "pfm", (41, 31))
+    cam = camera(scene, img.width, img.height)
+    ring = the(scene, model.Torus)
+    i, j = center_pixel(img)
+    found = nearest(scene, *pixel_ray(cam, i, j))
+    c.require(isinstance(found[1], Plane), "scene premise: the axis ray meets the wall")
+    c.expect_pixel(img, i, j, trace(scene, *pixel_ray(cam, i, j)), "through the hole")
+    ri, rj = project(cam, (ring.R, 0.0, -6.0))
+    ring_pixel = img.rows[round(rj)][round(ri)]
+    c.expect(not close(ring_pixel, img.rows[j][i]), "the ring looks like the hole")
+    c.expect_most(c.expect_model(scene, img), img, 0.85, "tori")
+
+
+def case_quadric_inside(c):
+    """The camera inside an ellipsoid quadric: its far end on the axis is
+    lit from inside (outward normal -z, facing the eye +z), closed form."""
+    scene = c.load("quadric_inside")
+    img = c.render("quadric_inside", "pfm", (41, 31))
+    shell = the(scene, model.Quadric)
+    want = lit_closed_form(scene, shell, (0.0, 0.0, -6.0), (0.0, 0.0, 1.0))
+    c.expect_pixel(img, *center_pixel(img), want, "far end on the axis, closed form")
+    c.expect_most(c.expect_model(scene, img), img, 0.9, "inside")
+
+
+def case_quadric_shapes(c):
+    """A hyperboloid, a glass ellipsoid and a paraboloid against the model."""
+    scene = c.load("quadric_shapes")
+    img = c.render("quadric_shapes", "pfm", (48, 36))
+    c.expect_most(c.expect_model(scene, img), img, 0.8, "quadrics")
+
+
+def case_triangle_winding(c):
+    """A triangle facing the camera: N.L with the normal facing the eye
+    (closed form), whichever way it is wound (the clockwise copy renders the
+    same image); a glass triangle lets light through unbent."""
+    scene = c.load("triangle_winding")
+    img = c.render("triangle_winding", "pfm", (41, 31))
+    cw = c.render("triangle_winding_cw", "pfm", (41, 31))
+    tri = the(scene, model.Triangle)
+    want = lit_closed_form(scene, tri, (0.0, 0.0, -5.0), (0.0, 0.0, 1.0))
+    c.expect_pixel(img, *center_pixel(img), want, "triangle on the axis, closed form")
+    c.expect(img.rows == cw.rows, "winding the triangle the other way changed the image")
+    c.expect_most(c.expect_model(scene, img), img, 0.85, "triangles")
+
+
+def case_mesh(c):
+    """mesh.obj (quads, negative indices, v/t/n parts) renders exactly as its
+    triangles written one by one, and matches the model."""
+    scene = c.load("mesh")
+    img = c.render("mesh", "pfm", (48, 36))
+    one_by_one = c.render("mesh_triangles", "pfm", (48, 36))
+    c.expect(img.rows == one_by_one.rows, "mesh and its triangles differ")
+    c.expect(len(scene.objects) == 8, f"{len(scene.objects)} objects, want floor, 6 triangles, sphere")
+    c.expect_most(c.expect_model(scene, img), img, 0.85, "mesh")
+
+
+def case_gradient_midpoint(c):
+    """Ambient light 1 and ka 1 show the pigment itself: the gradient's
+    midpoint x = 0 is (c0 + c1) / 2, its ends' colors hold beyond them."""
+    scene = c.load("gradient")
+    img = c.render("gradient", "pfm", (41, 31))
+    cam = camera(scene, img.width, img.height)
+    i, j = center_pixel(img)
+    c.expect_pixel(img, i, j, (0.5, 0.0, 0.5), "midpoint x = 0")
+    for col, want in ((0, (1.0, 0.0, 0.0)), (img.width - 1, (0.0, 0.0, 1.0))):
+        o, d = pixel_ray(cam, col, 0)
+        c.require(abs(o[0] + d[0] * 5 / -d[2]) > 1, "scene premise: the image's sides lie beyond x = 1")
+        c.expect_pixel(img, col, 0, want, "clamped beyond the end")
+    c.expect_most(c.expect_model(scene, img), img, 0.9, "gradients")
+
+
+def case_texmap_texels(c):
+    """Texels looked up at s = x / 4 + 0.5 with t = 0 exactly: the first and
+    last rows blend half and half (SPEC 3), bilinear across columns,
+    worked out here from texels.ppm's numbers; t = -y / 3 below."""
+    scene = c.load("texmap")
+    size = (40, 30)
+    img = c.render("texmap", "pfm", size)
+    ppm = c.render("texmap", "ppm", size)
+    cam = camera(scene, *size)
+    texels = [[(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0)],
+              [(0, 255, 255), (255, 0, 255), (128, 128, 128), (64, 32, 16)],
+              [(16, 32, 64), (200, 100, 50), (50, 100, 200), (10, 240, 10)]]
+    checked = 0
+    for i, j in pixels(cam):
+        o, d = pixel_ray(cam, i, j)
+        p = add(o, mul(d, -5 / d[2]))
+        if p[1] < 1e-3:
+            continue  # the lower wall: the model checks it below
+        x = ((p[0] / 4 + 0.5) % 1) * 4 - 0.5   # texel coordinate, centers at k + 0.5 - 0.5
+        k0 = math.floor(x)
+        f = x - k0
+        def column(row):
+            a, b = texels[row][k0 % 4], texels[row][(k0 + 1) % 4]
+            return [(1 - f) * a[ch] + f * b[ch] for ch in range(3)]
+        top, bottom = column(0), column(2)
+        want = tuple((0.5 * top[ch] + 0.5 * bottom[ch]) / 255 for ch in range(3))
+        c.expect_pixel(img, i, j, want, f"texel blend at x = {p[0]:.3f}")
+        c.expect_bytes(ppm, i, j, ppm_bytes(want), "texel blend")
+        checked += 1
+    c.expect(checked >= 400, f"only {checked} top-wall pixels checked")
+    c.expect_most(c.expect_model(scene, img), img, 0.9, "texmap")
 
 
 CASES = {name[5:]: f for name, f in sorted(globals().items()) if name.startswith("case_")}
