@@ -24,7 +24,8 @@ struct TP2_T(gpu_frame) {
     TP2_VEC4(limits);   /* x: bailout, the least weight a ray is traced with */
     TP2_IVEC4(counts);  /* width, height, point lights, objects */
     TP2_IVEC4(geometry); /* bounded objects, unbounded ones after them, BVH nodes */
-    TP2_IVEC4(sampling); /* lattice generator, arealight index, samples */
+    TP2_IVEC4(sampling); /* lattice generator, arealight index, samples,
+                          * TP2_CANARY_STEPS */
 };
 
 struct TP2_T(gpu_light) {

@@ -42,7 +42,7 @@ struct renderer {
 };
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
- * then the number of SIMD vectors that came near lavapipe's loop limit. */
+ * then the number of pixel samples lavapipe cut short. */
 #define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + 1)
 #define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
@@ -74,17 +74,16 @@ static void read_ray_counts(const uint32_t *words, uint64_t rays[TP2_STAT_COUNT]
         rays[i] = (uint64_t)words[2 * i + 1] << 32 | words[2 * i];
 }
 
-/* Says so when pixels may have been cut short by lavapipe's loop limit:
- * the image is still written, but the user must know. */
+/* Says so when lavapipe cut samples short (TP2_CANARY_STEPS): the image
+ * is still written, but the user must know. */
 static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
 {
-    uint32_t vectors = words[2 * TP2_STAT_COUNT];
-    if (vectors > 0)
-        fprintf(stderr, "tp2: warning: %u group%s of pixels traced so many rays that "
-                        "'%s' may have cut them short (it stops a shader's loops "
-                        "after 65535 iterations); prune faint rays (--bailout, "
-                        "default 1/255) or render on a GPU\n",
-                vectors, vectors == 1 ? "" : "s", vk->props.deviceName);
+    uint32_t samples = words[2 * TP2_STAT_COUNT];
+    if (samples > 0)
+        fprintf(stderr, "tp2: warning: '%s' cut %u pixel sample%s short (it stops a "
+                        "shader's loops after 65535 iterations), so they are wrong; prune "
+                        "faint rays (--bailout, default 1/255) or render on a GPU\n",
+                vk->props.deviceName, samples, samples == 1 ? "" : "s");
 }
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
@@ -109,21 +108,10 @@ static void spec_values(const struct scene_features *f, bool count_rays,
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }
 
-/* Only CPU devices (lavapipe) cut long shader loops short; the guard's
- * count needs subgroup arithmetic in compute shaders. */
+/* Only CPU devices (lavapipe) cut long shader loops short. */
 static bool needs_loop_guard(const struct vkc *vk)
 {
-    VkPhysicalDeviceSubgroupProperties sub = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
-    };
-    VkPhysicalDeviceProperties2 props = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
-        .pNext = &sub,
-    };
-    vkGetPhysicalDeviceProperties2(vk->physical, &props);
-    return vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-           (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-           (sub.supportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT);
+    return vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
 static int create_pipeline(struct renderer *r, bool use_double,

@@ -24,7 +24,16 @@ const Start NOWHERE = Start(-1, false);
 #include "poly.glsl"
 #include "shapes.glsl"
 
+#ifdef TP2_DOUBLE
+const real BOX_SLACK = 1.0 + 4.5e-15LF; // 2^-47
+#else
+const real BOX_SLACK = 1.0 + 4.76837158203125e-7; // 2^-21
+#endif
+
 // Distance at which the ray enters the box, if before tmax; else NO_HIT.
+// Each slab's t carries two roundings of relative size 2^-24 (float), so
+// the exit is widened by 2^-21 of itself: a ray grazing a box's face far
+// from the camera must not miss it (Ize, "Robust BVH Ray Traversal").
 real box_entry(vec3 lo, vec3 hi, rvec3 o, rvec3 inv_d, real tmax)
 {
     rvec3 t0 = (rvec3(lo) - o) * inv_d;
@@ -32,8 +41,8 @@ real box_entry(vec3 lo, vec3 hi, rvec3 o, rvec3 inv_d, real tmax)
     rvec3 tn = min(t0, t1);
     rvec3 tf = max(t0, t1);
     real enter = max(max(tn.x, tn.y), max(tn.z, real(0.0)));
-    real leave = min(min(tf.x, tf.y), min(tf.z, tmax));
-    return enter <= leave ? enter : NO_HIT;
+    real leave = min(min(tf.x, tf.y), tf.z) * BOX_SLACK;
+    return enter <= min(leave, tmax) ? enter : NO_HIT;
 }
 
 // 1 / d with zero components replaced by a tiny positive number, so the
@@ -49,7 +58,6 @@ rvec3 safe_inverse(rvec3 d)
 void hit_objects(int first, int end, rvec3 o, rvec3 d, Start start, bool any_hit, inout Hit h)
 {
     for (int i = first; i < end; ++i) {
-        TP2_STEP();
         int part;
         real t = hit_object(i, o, d, i == start.object, start.inward, part);
         if (t < h.t) {
@@ -85,7 +93,6 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
     // at most once, and the unbounded range comes once.
     int steps = 2 * frame.geometry.z + 4;
     for (int step = 0; step < steps; ++step) {
-        TP2_STEP();
         if (first < end) {
             hit_objects(first, end, o, d, start, any_hit, h);
             first = end;

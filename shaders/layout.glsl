@@ -16,7 +16,7 @@ struct Frame {
     vec4 limits;      // x: bailout, the least weight a ray is traced with
     ivec4 counts;     // width, height, point lights, objects
     ivec4 geometry;   // bounded objects (BVH order), unbounded ones after them, BVH nodes
-    ivec4 sampling;   // lattice generator, arealight index, arealight samples
+    ivec4 sampling;   // lattice generator, arealight index, arealight samples, TP2_CANARY_STEPS
 };
 
 struct Light {
@@ -64,10 +64,10 @@ layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { 
 // Texmap images: one word per texel, r | g << 8 | b << 16, rows top to bottom.
 layout(std430, set = 0, binding = TP2_BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
-// Ray counters as (low, high) pairs, then the vectors near lavapipe's limit.
+// Ray counters as (low, high) pairs, then how many samples lavapipe cut short.
 layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf {
     uint ray_counts[2 * TP2_STAT_COUNT];
-    uint near_loop_limit;
+    uint cut_short;
 };
 
 // What this dispatch covers: a band of pixels, and which of their samples.
@@ -93,8 +93,3 @@ layout(constant_id = TP2_SPEC_LOOP_GUARD) const bool LOOP_GUARD = false;
 // TP2_SHAPE_*): code for kinds it does not use is compiled out.
 #define USES_PIGMENT(k) ((PIGMENT_KINDS & (1 << (k))) != 0)
 #define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
-
-// One iteration of some loop: one lane per SIMD vector counts it, so the
-// vector's total is the sum over its lanes (see TP2_LOOP_LIMIT_NEAR).
-uint loop_steps = 0u;
-#define TP2_STEP() if (LOOP_GUARD && subgroupElect()) ++loop_steps

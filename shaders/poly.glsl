@@ -14,6 +14,14 @@
 // (Newton doubles the digits each step; bisection gains one bit).
 const int ROOT_STEPS = 60;
 
+// Roots are sought in units of the object's size (the torus fits the unit
+// sphere): a step this small has reached the precision of `real`.
+#ifdef TP2_DOUBLE
+const real ROOT_TOL = 4e-16LF;
+#else
+const real ROOT_TOL = 2e-7;
+#endif
+
 real poly_value(real c4, rvec4 c, real s)
 {
     return (((c4 * s + c.w) * s + c.z) * s + c.y) * s + c.x;
@@ -25,12 +33,14 @@ real poly_slope(real c4, rvec4 c, real s)
 }
 
 // The root in [a, b] of a polynomial monotone there whose values at a and
-// b differ in sign (fa is its value at a).
-real bracketed_root(real c4, rvec4 c, real a, real b, real fa)
+// b differ in sign (fa, fb): from where the chord crosses zero, Newton
+// steps, or halving when they leave the bracket.
+real bracketed_root(real c4, rvec4 c, real a, real b, real fa, real fb)
 {
-    real x = 0.5 * (a + b);
+    real x = a - fa * (b - a) / (fb - fa);
+    if (!(x > a && x < b))
+        x = 0.5 * (a + b);
     for (int step = 0; step < ROOT_STEPS; ++step) {
-        TP2_STEP();
         real fx = poly_value(c4, c, x);
         if (fx == 0.0)
             break;
@@ -41,9 +51,10 @@ real bracketed_root(real c4, rvec4 c, real a, real b, real fa)
         real next = x - fx / poly_slope(c4, c, x);
         if (!(next > a && next < b)) // outside the bracket, or NaN
             next = 0.5 * (a + b);
-        if (next == x)
-            break;
+        bool done = abs(next - x) <= ROOT_TOL || b - a <= ROOT_TOL;
         x = next;
+        if (done)
+            break;
     }
     return x;
 }
@@ -69,43 +80,48 @@ int quadratic_roots(real a, real b, real c, out rvec2 r)
     return 2;
 }
 
-// Where a piece [a, b] of the polynomial ends: the next of the ascending
-// cut points cuts[0..n) above a, else b.
-real piece_end(rvec3 cuts, int n, int k, real b)
+// Lists of roots are vectors, ascending, padded with NO_HIT at the end;
+// x goes in at its place, the last entry falls off. (No vector is indexed
+// at run time: lavapipe turns that into slow code.)
+rvec4 insert4(rvec4 v, real x)
 {
-    return k < n ? min(cuts[k], b) : b;
+    return min(v, max(rvec4(-NO_HIT, v.xyz), rvec4(x)));
+}
+
+rvec3 insert3(rvec3 v, real x)
+{
+    return min(v, max(rvec3(-NO_HIT, v.xy), rvec3(x)));
 }
 
 // The roots in [lo, hi] of the polynomial (c4, c) of degree 3 or 4 whose
-// derivative's roots in [lo, hi] are cuts[0..ncuts), ascending.
-int roots_between(real c4, rvec4 c, rvec3 cuts, int ncuts, real lo, real hi, out rvec4 roots)
+// derivative's roots in [lo, hi] are `cuts` (a list as above).
+rvec4 roots_between(real c4, rvec4 c, rvec3 cuts, real lo, real hi)
 {
-    int n = 0;
-    roots = rvec4(NO_HIT);
+    rvec4 roots = rvec4(NO_HIT);
     real a = lo;
     real fa = poly_value(c4, c, a);
-    for (int k = 0; k <= ncuts; ++k) {
-        TP2_STEP();
-        real b = piece_end(cuts, ncuts, k, hi);
+    for (int k = 0; k < 4 && a < hi; ++k) {
+        real b = min(cuts.x, hi); // the next cut, or the end
+        cuts = rvec3(cuts.yz, NO_HIT);
         real fb = poly_value(c4, c, b);
         if (b > a && (fa < 0.0) != (fb < 0.0))
-            roots[n++] = fb == 0.0 ? b : bracketed_root(c4, c, a, b, fa);
-        a = max(a, b);
+            roots = insert4(roots, fb == 0.0 ? b : bracketed_root(c4, c, a, b, fa, fb));
+        a = b;
         fa = fb;
     }
-    return n;
+    return roots;
 }
 
 // The roots in [lo, hi] of the cubic c.w s^3 + c.z s^2 + c.y s + c.x
-// (c.w != 0), ascending.
-int cubic_roots(rvec4 c, real lo, real hi, out rvec4 roots)
+// (c.w != 0).
+rvec4 cubic_roots(rvec4 c, real lo, real hi)
 {
     rvec2 q;
     int nq = quadratic_roots(3.0 * c.w, 2.0 * c.z, c.y, q);
     rvec3 cuts = rvec3(NO_HIT);
-    int ncuts = 0;
-    for (int k = 0; k < nq; ++k)
-        if (q[k] > lo && q[k] < hi)
-            cuts[ncuts++] = q[k];
-    return roots_between(0.0, c, cuts, ncuts, lo, hi, roots);
+    if (nq >= 1 && q.x > lo && q.x < hi)
+        cuts = insert3(cuts, q.x);
+    if (nq == 2 && q.y > lo && q.y < hi)
+        cuts = insert3(cuts, q.y);
+    return roots_between(0.0, c, cuts, lo, hi);
 }

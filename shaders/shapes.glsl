@@ -154,7 +154,6 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
     int faces = int(objects[i].a.x);
     Span s = WHOLE_LINE;
     for (int k = 0; k < faces; ++k) {
-        TP2_STEP();
         rvec4 f = extra[first + k];
         real denom = dot(f.xyz, d);
         real dist = dot(f.xyz, o) + f.w; // > 0: o is outside this face
@@ -312,22 +311,24 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
     // On the surface: the roots of s^3 + c.w s^2 + c.z s + c.y, the
     // quartic over s. Else the quartic's, cut where its slope (a cubic)
     // is zero.
-    rvec4 roots;
     rvec4 cubic = on ? rvec4(c.y, c.z, c.w, 1.0) : rvec4(c.y, 2.0 * c.z, 3.0 * c.w, 4.0);
-    int n = cubic_roots(cubic, lo, hi, roots);
+    rvec4 roots = cubic_roots(cubic, lo, hi);
     if (!on)
-        n = roots_between(1.0, c, roots.xyz, n, lo, hi, roots);
-    for (int k = 0; k < n; ++k) {
-        rvec3 y = x + roots[k] * d;
+        roots = roots_between(1.0, c, roots.xyz, lo, hi);
+    // The first root that is on the tube (not the lemon) and ahead.
+    real found = NO_HIT;
+    for (int k = 0; k < 4 && roots.x < NO_HIT && found == NO_HIT; ++k) {
+        rvec3 y = x + roots.x * d;
         real z = dot(y, ab.xyz);
         real rho = length(y - z * ab.xyz);
         real tube = (rho - R) * (rho - R) + z * z - r * r;
         real lemon = (rho + R) * (rho + R) + z * z - r * r;
-        real t = t0 + roots[k] * size;
+        real t = t0 + roots.x * size;
         if (abs(tube) <= abs(lemon) && t > 0.0)
-            return t;
+            found = t;
+        roots = rvec4(roots.yzw, NO_HIT);
     }
-    return NO_HIT;
+    return found;
 }
 
 // p moved onto the tube: r from the nearest point of the core circle.
@@ -407,11 +408,11 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
 // Watertight (Woop, Benthin and Wald 2013): the ray becomes the z axis by
 // a permutation and a shear, and each edge's side is decided by a 2D
 // cross product computed the same way for the two triangles sharing it, so
-// no ray slips between them.
-real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
+// no ray slips between them. Gives the corners' weights (u, v, w) of the
+// point the ray's line meets the triangle's plane (their sum is not 1),
+// and how far along the ray it is, t = tw / (u + v + w).
+rvec3 triangle_weights(int i, rvec3 o, rvec3 d, out real tw)
 {
-    if (on)
-        return NO_HIT;
     rvec3 ad = abs(d);
     // Permute so that z is d's largest component, keeping the winding.
     ivec3 k = ad.x > ad.y ? (ad.x > ad.z ? ivec3(1, 2, 0) : ivec3(0, 1, 2))
@@ -428,24 +429,42 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
     rvec2 sa = pa.xy - shear.xy * pa.z;
     rvec2 sb = pb.xy - shear.xy * pb.z;
     rvec2 sc = pc.xy - shear.xy * pc.z;
-    real u = sc.x * sb.y - sc.y * sb.x;
-    real v = sa.x * sc.y - sa.y * sc.x;
-    real w = sb.x * sa.y - sb.y * sa.x;
-    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0))
+    rvec3 uvw = rvec3(sc.x * sb.y - sc.y * sb.x, sa.x * sc.y - sa.y * sc.x,
+                      sb.x * sa.y - sb.y * sa.x);
+    tw = (uvw.x * pa.z + uvw.y * pb.z + uvw.z * pc.z) * shear.z;
+    return uvw;
+}
+
+real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
+{
+    if (on)
         return NO_HIT;
-    real det = u + v + w;
+    real tw;
+    rvec3 uvw = triangle_weights(i, o, d, tw);
+    if (any(lessThan(uvw, rvec3(0.0))) && any(greaterThan(uvw, rvec3(0.0))))
+        return NO_HIT;
+    real det = uvw.x + uvw.y + uvw.z;
     if (det == 0.0)
         return NO_HIT;
-    real t = (u * pa.z + v * pb.z + w * pc.z) * shear.z / det;
+    real t = tw / det;
     return t > 0.0 ? t : NO_HIT;
 }
 
-void surface_triangle(int i, inout rvec3 p, out rvec3 n, out real scale)
+// The point from the corners' weights rather than o + t d: it then lies
+// on this triangle to the precision of its corners, however far the ray
+// came, and not just past an edge on a neighbor's side (where its shadow
+// rays would hit the neighbor: acne on meshes seen from afar).
+void surface_triangle(int i, rvec3 o, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
 {
     rvec4 a = objects[i].a;
-    n = rvec3(a.w, objects[i].b.w, objects[i].c.w);
-    p -= dot(p - a.xyz, n) * n;
-    scale = max_abs(p) + max_abs(a.xyz - p);
+    rvec4 b = objects[i].b;
+    rvec4 c = objects[i].c;
+    n = rvec3(a.w, b.w, c.w);
+    real tw;
+    rvec3 uvw = triangle_weights(i, o, d, tw);
+    uvw /= uvw.x + uvw.y + uvw.z;
+    p = uvw.x * a.xyz + uvw.y * b.xyz + uvw.z * c.xyz;
+    scale = max(max_abs(a.xyz), max(max_abs(b.xyz), max_abs(c.xyz)));
 }
 
 // ---- by kind -----------------------------------------------------------
@@ -493,7 +512,7 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
     else if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
         onto_plane(objects[i].a, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
-        surface_triangle(i, p, n, scale);
+        surface_triangle(i, o, d, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
         surface_box(i, part, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)

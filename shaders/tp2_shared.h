@@ -32,7 +32,7 @@
 #define TP2_SPEC_STATS 8      /* bool: count rays (--stats) */
 #define TP2_SPEC_SAMPLES 9    /* int: samples per pixel */
 #define TP2_SPEC_BVH 10       /* bool: bounded objects through the BVH, else a loop */
-#define TP2_SPEC_LOOP_GUARD 11 /* bool: count loop steps (lavapipe's limit) */
+#define TP2_SPEC_LOOP_GUARD 11 /* bool: detect lavapipe's loop limit */
 #define TP2_SPEC_COUNT 12
 
 /* Ray counters in the stats buffer, by kind. */
@@ -44,11 +44,10 @@
 
 /* lavapipe ends all loops of a shader invocation (a SIMD vector of lanes)
  * after 65535 iterations in total, silently (Mesa's gallivm,
- * LP_MAX_TGSI_LOOP_ITERATIONS). On CPU devices the shader counts its loop
- * iterations per vector and flags vectors that got this close; the margin
- * covers iterations it does not see (cut-short vectors were measured to
- * count 63500-64600). */
-#define TP2_LOOP_LIMIT_NEAR 60000
+ * LP_MAX_TGSI_LOOP_ITERATIONS). On CPU devices each invocation ends with a
+ * loop of TP2_CANARY_STEPS iterations (a count read from the frame, so no
+ * compiler can unroll it): if it stops early, the invocation was cut. */
+#define TP2_CANARY_STEPS 2
 
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32

@@ -8,8 +8,6 @@
 // double-precision geometry (the reference image); lighting stays in float.
 // Specialization constants (layout.glsl) strip what the scene does not use.
 #extension GL_GOOGLE_include_directive : require
-#extension GL_KHR_shader_subgroup_basic : require
-#extension GL_KHR_shader_subgroup_arithmetic : require
 
 #include "tp2_shared.h"
 
@@ -54,6 +52,22 @@ struct Ray {
 
 uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 
+// Pruning with a bounded error: a child ray fainter than the bailout is
+// not traced, but only while the weights of the rays a sample has pruned
+// so far add up to at most half the bailout (`budget` is what is left).
+// What a pruned ray would have added is its weight times the radiance it
+// brings back, so a sample's error is at most bailout / 2 times the
+// largest such radiance: half an 8-bit level for the default 1/255 where
+// radiance is within [0, 1]. Without the budget, a deep tree prunes
+// thousands of faint rays whose weights add up to whole levels.
+bool traced(float w, inout float budget)
+{
+    if (w >= frame.limits.x || w > budget)
+        return true;
+    budget -= w;
+    return false;
+}
+
 // Traces one ray: adds what it sees to color and returns how many
 // children it spawns (0 to 2), the first in `first`, the other in `second`.
 //
@@ -61,7 +75,8 @@ uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 // per light sample. One call of trace_scene serves them all, so the
 // intersection code of every kind is compiled once: drivers inline each
 // call, and compile time grows with the copies.
-int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ray second)
+int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, out Ray first,
+               out Ray second)
 {
     first = second = ray;
     vec3 gray = frame.background.rgb;
@@ -74,7 +89,6 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ra
     vec3 local = vec3(0.0);
     int queries = 1;
     for (int q = 0; q < queries; ++q) {
-        TP2_STEP();
         rvec3 o = ray.origin;
         rvec3 d = ray.dir;
         real tmax = NO_HIT;
@@ -133,15 +147,14 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, out Ray first, out Ra
         color += weight * (max(kr, 0.0) + max(kt, 0.0)) * gray;
         return 0;
     }
-    float bailout = frame.limits.x;
     int children = 0;
-    if (kr > 0.0 && weight * kr >= bailout) { // fainter ones are pruned
+    if (kr > 0.0 && traced(weight * kr, budget)) {
         rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
         first = Ray(outside, r, back, weight * kr, depth);
         ++children;
         ++ray_tally[TP2_STAT_REFLECTED];
     }
-    if (kt > 0.0 && weight * kt >= bailout) {
+    if (kt > 0.0 && traced(weight * kt, budget)) {
         real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
         real cosi = -dot(ray.dir, nf);
         real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
@@ -174,10 +187,10 @@ vec3 trace(rvec3 eye, rvec3 dir, vec2 area_shift)
     Ray ray = Ray(eye, dir, NOWHERE, 1.0, 0);
     bool live = true; // `ray` is still to be traced
     vec3 color = vec3(0.0);
+    float budget = 0.5 * frame.limits.x; // pruned weight this sample may drop
     for (int iter = 0; iter < MAX_RAYS && live; ++iter) {
-        TP2_STEP();
         Ray first, second;
-        int children = trace_step(ray, area_shift, color, first, second);
+        int children = trace_step(ray, area_shift, color, budget, first, second);
         if (children == 2 && sp < STACK_SIZE)
             pending[sp++] = second;
         if (children > 0)
@@ -227,10 +240,12 @@ void main()
     pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
     ray_tally[TP2_STAT_CAMERA] = 1u;
 
-    if (LOOP_GUARD) {
-        uint vector_steps = subgroupAdd(loop_steps);
-        if (vector_steps >= TP2_LOOP_LIMIT_NEAR && subgroupElect())
-            atomicAdd(near_loop_limit, 1u);
+    if (LOOP_GUARD) { // see TP2_CANARY_STEPS
+        int canary = 0;
+        for (int k = 0; k < frame.sampling.w; ++k)
+            ++canary;
+        if (canary != frame.sampling.w)
+            atomicAdd(cut_short, 1u);
     }
     if (COUNT_RAYS)
         for (int i = 0; i < TP2_STAT_COUNT; ++i) {

@@ -446,7 +446,7 @@ static void check_plain_array(const struct spv *m, const char *name, long bindin
 }
 
 /* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT], then uint
- * near_loop_limit, at TP2_BINDING_STATS, read by render.c as that many
+ * cut_short, at TP2_BINDING_STATS, read by render.c as that many
  * uint32_t words. */
 static void check_stats(const struct spv *m)
 {
@@ -469,9 +469,9 @@ static void check_stats(const struct spv *m)
         return;
     enum kind last_kind = KIND_OTHER;
     size_t last_size = spv_type_size(m, m->w[def + 3], &last_kind);
-    expect(last_size == sizeof(uint32_t) && last_kind == KIND_U32, "%s: " "near_loop_limit: a uint", m->label);
+    expect(last_size == sizeof(uint32_t) && last_kind == KIND_U32, "%s: " "cut_short: a uint", m->label);
     long last_offset = spv_member_decoration(m, block, 1, DEC_OFFSET);
-    expect(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "%s: " "near_loop_limit: Offset %ld, want %zu (the word after ray_counts)", m->label,
+    expect(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "%s: " "cut_short: Offset %ld, want %zu (the word after ray_counts)", m->label,
           last_offset, 2 * TP2_STAT_COUNT * sizeof(uint32_t));
     enum kind kind = KIND_OTHER;
     size_t size = spv_type_size(m, m->w[arr + 2], &kind);
