@@ -131,8 +131,8 @@ static int vertex_ref(struct obj_reader *r, char **s, size_t *index)
     long long i = v > 0 ? v - 1 : n + v;
     if (v == 0 || i < 0 || i >= n) {
         describe(p, found, sizeof found);
-        return fail(r, col, "vertex index %s is out of range (%zu vertices so far)", found,
-                    r->nv);
+        return fail(r, col, "vertex index %s is out of range (%zu vert%s so far)", found,
+                    r->nv, r->nv == 1 ? "ex" : "ices");
     }
     /* Texture and normal indices are not used; they must still be plain
      * integers, so a mangled part is not silently read. */

@@ -3,10 +3,12 @@
  * Every grammar rule with its parsed values checked, and every error class
  * with its exact message. Prints "N passed, M failed" last; exits 0 only
  * when nothing failed. */
+#define _DEFAULT_SOURCE /* mkdtemp */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "pigments.h"
 #include "scene_parse.h"
@@ -222,6 +224,123 @@ static void test_short_finish(void)
     EXPECT_ERROR(CAM LIGHTS PIGS "1\n0.4 0.6 0 1 0.25 0.5\n0\n",
                  "t.txt:12:1: error: expected a positive index of refraction "
                  "since kt > 0, found '0'");
+}
+
+/* reals of object i equal want[0..n). */
+static int reals_are(const struct scene *s, size_t i, const double *want, size_t n)
+{
+    if (i >= s->nobjects || s->objects[i].count != n)
+        return 0;
+    return memcmp(scene_object_reals(s, &s->objects[i]), want, n * sizeof *want) == 0;
+}
+
+/* Every kind of SPEC 3 with its numbers as shapes.c stores them. */
+static void test_shape_kinds(void)
+{
+    struct scene s = parse_ok(CAM LIGHTS PIGS FINS "9\n"
+                              "0 0 sphere 1 2 3 4\n"
+                              "0 0 plane 0 2 0 -1\n"
+                              "0 0 polyhedron 2\n  0 0 1 5\n  1 1 1 -3\n"
+                              "0 0 box 1 2 3 -1 -2 -3\n"
+                              "0 0 cylinder 0 0 0  0 3 0  0.5\n"
+                              "0 0 cone 0 0 0 1  0 2 0 0\n"
+                              "0 0 torus 1 2 3  0 0 2  1.5 0.25\n"
+                              "0 0 quadric 1 2 3 4 5 6 7 8 9 -10\n"
+                              "0 0 triangle 0 0 0  1 0 0  0 1 0\n",
+                              __LINE__);
+    static const int kinds[] = {SHAPE_SPHERE, SHAPE_PLANE, SHAPE_POLYHEDRON, SHAPE_BOX,
+                                SHAPE_CYLINDER, SHAPE_CONE, SHAPE_TORUS, SHAPE_QUADRIC,
+                                SHAPE_TRIANGLE};
+    CHECK(s.nobjects == 9);
+    for (size_t i = 0; i < 9 && i < s.nobjects; i++)
+        expect(s.objects[i].kind == kinds[i], "object %zu kind %d", i, s.objects[i].kind);
+    static const double sph[] = {1, 2, 3, 4}, pla[] = {0, 2, 0, -1},
+                        pol[] = {0, 0, 1, 5, 1, 1, 1, -3}, box[] = {1, 2, 3, -1, -2, -3},
+                        cyl[] = {0, 0, 0, 0, 3, 0, 0.5}, con[] = {0, 0, 0, 1, 0, 2, 0, 0},
+                        tor[] = {1, 2, 3, 0, 0, 2, 1.5, 0.25},
+                        qua[] = {1, 2, 3, 4, 5, 6, 7, 8, 9, -10},
+                        tri[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    CHECK(reals_are(&s, 0, sph, 4) && reals_are(&s, 1, pla, 4) && reals_are(&s, 2, pol, 8));
+    CHECK(reals_are(&s, 3, box, 6) && reals_are(&s, 4, cyl, 7) && reals_are(&s, 5, con, 8));
+    CHECK(reals_are(&s, 6, tor, 8) && reals_are(&s, 7, qua, 10) && reals_are(&s, 8, tri, 9));
+    scene_free(&s);
+    /* Cone radii may be 0 at either end; a quadric needs only one term. */
+    s = parse_ok(CAM LIGHTS PIGS FINS "2\n0 0 cone 0 0 0 0  0 1 0 2\n"
+                                      "0 0 quadric 0 0 0 0 0 0 0 0 1 0\n", __LINE__);
+    CHECK(s.nobjects == 2);
+    scene_free(&s);
+}
+
+/* Writes text to dir/name. */
+static void write_file(const char *dir, const char *name, const void *data, size_t len)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(data, 1, len, f);
+        fclose(f);
+    }
+}
+
+/* Files a scene names are found beside it: a mesh and a texture, with
+ * names that look like numbers; the mesh's triangles become its numbers;
+ * a texture named twice is read once. */
+static void test_files_beside_scene(void)
+{
+    char dir[] = "/tmp/tp2-parser-XXXXXX";
+    if (!mkdtemp(dir)) {
+        expect(0, "mkdtemp");
+        return;
+    }
+    const char obj[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    write_file(dir, "1.obj", obj, sizeof obj - 1);
+    const char ppm[] = "P3 2 1 255 255 0 0 0 0 255\n";
+    write_file(dir, "2x.ppm", ppm, sizeof ppm - 1);
+    char name[600];
+    snprintf(name, sizeof name, "%s/t.txt", dir);
+    const char *text = CAM LIGHTS "3\ntexmap 2x.ppm 1 0 0 0 0 1 0 0\n"
+                       "gradient 0 0 0 1 0 0  1 0 0  0 0 1\n"
+                       "texmap ./2x.ppm 0 0 1 0 1 0 0 0.5\n" FINS
+                       "1\n0 0 mesh 1.obj\n";
+    struct scene s;
+    char err[512];
+    int rc = scene_parse_text(name, text, strlen(text), &s, err, sizeof err);
+    expect(rc == 0, "parse with files: %s", rc ? err : "");
+    if (rc == 0) {
+        CHECK(s.npigments == 3 && s.pigments[0].kind == PIGMENT_TEXMAP &&
+              s.pigments[1].kind == PIGMENT_GRADIENT && s.pigments[2].kind == PIGMENT_TEXMAP);
+        CHECK(s.ntextures == 2); /* paths are compared as resolved: ./2x.ppm is another */
+        CHECK(s.textures[0].width == 2 && s.textures[0].height == 1 &&
+              s.textures[0].rgb[0] == 255 && s.textures[0].rgb[5] == 255);
+        CHECK(s.pigments[0].s[0] == 1 && s.pigments[2].t[3] == 0.5);
+        CHECK(vec_eq(s.pigments[1].p1, 1, 0, 0) && vec_eq(s.pigments[1].color2, 0, 0, 1));
+        static const double tris[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0};
+        CHECK(s.objects[0].kind == SHAPE_MESH && reals_are(&s, 0, tris, 18));
+        scene_free(&s);
+    }
+    /* The same file named the same way twice is decoded once. */
+    text = CAM LIGHTS "2\ntexmap 2x.ppm 1 0 0 0 0 1 0 0\ntexmap 2x.ppm 1 0 0 0 0 1 0 0\n"
+           "0\n0\n";
+    rc = scene_parse_text(name, text, strlen(text), &s, err, sizeof err);
+    CHECK(rc == 0 && s.ntextures == 1 && s.pigments[1].texture == 0);
+    if (rc == 0)
+        scene_free(&s);
+    /* A malformed OBJ is reported at its own line and column. */
+    write_file(dir, "bad.obj", "v 0 0 0\nf 1 2 3\n", 16);
+    text = CAM LIGHTS PIGS FINS "1\n0 0 mesh bad.obj\n";
+    rc = scene_parse_text(name, text, strlen(text), &s, err, sizeof err);
+    char want[700];
+    snprintf(want, sizeof want, "%s/bad.obj:2:5: error: vertex index '2' is out of range "
+                                "(1 vertex so far)", dir);
+    expect(rc == -1 && strcmp(err, want) == 0, "bad OBJ:\n  got  %s\n  want %s", err, want);
+    const char *names[] = {"1.obj", "2x.ppm", "bad.obj", "t.txt"};
+    for (int i = 0; i < 4; i++) {
+        char path[700];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        remove(path);
+    }
+    rmdir(dir);
 }
 
 /* Object lists grow as they are read; many entries, each checked. */
@@ -544,6 +663,8 @@ int main(void)
     test_directives();
     test_semantic_edges();
     test_short_finish();
+    test_shape_kinds();
+    test_files_beside_scene();
     test_many_objects();
     test_unterminated_buffer();
     test_api_edges();

@@ -1,0 +1,266 @@
+/* test_shapes.c: the shape table's bounds and GPU records, and the
+ * bounding boxes of convex polyhedra.
+ *
+ * Bounds must contain every point of the shape (checked on points spread
+ * over each surface) and be tight; polyhedra are bounded or not as their
+ * faces say; a triangle's record carries the normal its winding gives; a
+ * quadric's record, about its reference point, is the same function.
+ * Prints "N passed, M failed" last. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "convex.h"
+#include "shapes.h"
+#include "vec3.h"
+
+#include "unit.h"
+
+static const double pi = 3.14159265358979323846;
+
+static int inside_box(const double p[3], const double lo[3], const double hi[3])
+{
+    return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
+           p[2] >= lo[2] && p[2] <= hi[2];
+}
+
+/* Largest distance from the box's faces to the nearest sample: how loose
+ * the box is (0 when samples touch all six faces). */
+static double looseness(const double (*pts)[3], int n, const double lo[3], const double hi[3])
+{
+    double worst = 0;
+    for (int a = 0; a < 3; a++) {
+        double mn = INFINITY, mx = -INFINITY;
+        for (int i = 0; i < n; i++) {
+            mn = fmin(mn, pts[i][a]);
+            mx = fmax(mx, pts[i][a]);
+        }
+        worst = fmax(worst, fmax(mn - lo[a], hi[a] - mx));
+    }
+    return worst;
+}
+
+/* A frame (u, v) perpendicular to unit axis w. */
+static void frame(const double w[3], double u[3], double v[3])
+{
+    double t[3] = {1, 0, 0};
+    if (fabs(w[0]) > 0.9)
+        t[0] = 0, t[1] = 1;
+    vec3_cross(w, t, u);
+    vec3_unit(u, u);
+    vec3_cross(w, u, v);
+}
+
+enum { SAMPLES = 4000 };
+static double pts[SAMPLES][3];
+
+/* Checks kind's bounds of numbers p against n sampled surface points. */
+static void check_bounds(const char *name, int kind, const double *p, size_t count, int n,
+                         double tight)
+{
+    double lo[3], hi[3];
+    int bounded = shape_kinds[kind].bounds(p, count, 0, lo, hi);
+    expect(bounded, "%s: bounded", name);
+    int out = 0;
+    for (int i = 0; i < n; i++)
+        out += !inside_box(pts[i], lo, hi);
+    expect(out == 0, "%s: %d of %d surface points outside the bounds", name, out, n);
+    double loose = looseness((const double (*)[3])pts, n, lo, hi);
+    expect(loose <= tight, "%s: bounds %g looser than the samples (allowed %g)", name, loose, tight);
+}
+
+static void test_round_bounds(void)
+{
+    /* Cylinder from a to b, radius r, tilted: its rims. */
+    const double cyl[7] = {1, -2, 0.5, 3.5, 1, -1.5, 0.75};
+    double w[3], u[3], v[3];
+    double d[3] = {cyl[3] - cyl[0], cyl[4] - cyl[1], cyl[5] - cyl[2]};
+    vec3_unit(d, w);
+    frame(w, u, v);
+    int n = 0;
+    for (int end = 0; end < 2; end++)
+        for (int k = 0; k < SAMPLES / 2; k++, n++) {
+            double phi = 2 * pi * k / (SAMPLES / 2);
+            for (int a = 0; a < 3; a++)
+                pts[n][a] = cyl[a + 3 * end] + cyl[6] * (cos(phi) * u[a] + sin(phi) * v[a]);
+        }
+    check_bounds("cylinder", SHAPE_CYLINDER, cyl, 7, n, 1e-5);
+
+    /* Cone with an apex: the base rim and the apex. */
+    const double cone[8] = {-1, 0, 2, 1.5, 0.5, 3, 1, 0};
+    double dc[3] = {cone[4] - cone[0], cone[5] - cone[1], cone[6] - cone[2]};
+    vec3_unit(dc, w);
+    frame(w, u, v);
+    n = 0;
+    for (int k = 0; k < SAMPLES - 1; k++, n++) {
+        double phi = 2 * pi * k / (SAMPLES - 1);
+        for (int a = 0; a < 3; a++)
+            pts[n][a] = cone[a] + cone[3] * (cos(phi) * u[a] + sin(phi) * v[a]);
+    }
+    memcpy(pts[n++], cone + 4, sizeof pts[0]);
+    check_bounds("cone", SHAPE_CONE, cone, 8, n, 1e-5);
+
+    /* Torus with a tilted axis: points over its whole surface. */
+    const double tor[8] = {2, -1, 0.5, 1, 2, -0.5, 1.25, 0.4};
+    vec3_unit(tor + 3, w);
+    frame(w, u, v);
+    n = 0;
+    for (int i = 0; i < 80; i++)
+        for (int j = 0; j < 50; j++, n++) {
+            double a1 = 2 * pi * i / 80, a2 = 2 * pi * j / 50;
+            for (int a = 0; a < 3; a++) {
+                double radial = cos(a1) * u[a] + sin(a1) * v[a];
+                pts[n][a] = tor[a] + (tor[6] + tor[7] * cos(a2)) * radial + tor[7] * sin(a2) * w[a];
+            }
+        }
+    check_bounds("torus", SHAPE_TORUS, tor, 8, n, 2e-3);
+
+    /* Sphere, box (corners given in any order), triangle. */
+    const double sph[4] = {1e5, -3, 0.25, 2};
+    n = 0;
+    for (int i = 0; i < 60; i++)
+        for (int j = 0; j <= 60; j++, n++) {
+            double th = pi * j / 60, ph = 2 * pi * i / 60;
+            pts[n][0] = sph[0] + sph[3] * sin(th) * cos(ph);
+            pts[n][1] = sph[1] + sph[3] * sin(th) * sin(ph);
+            pts[n][2] = sph[2] + sph[3] * cos(th);
+        }
+    check_bounds("sphere", SHAPE_SPHERE, sph, 4, n, 1e-3);
+    const double box[6] = {2, -1, 5, -3, 4, 1};
+    n = 0;
+    for (int c = 0; c < 8; c++, n++)
+        for (int a = 0; a < 3; a++)
+            pts[n][a] = box[a + 3 * ((c >> a) & 1)];
+    check_bounds("box", SHAPE_BOX, box, 6, n, 0);
+    const double tri[9] = {0, 0, 0, 1, 2, -3, -4, 0.5, 1};
+    for (int c = 0; c < 3; c++)
+        memcpy(pts[c], tri + 3 * c, sizeof pts[0]);
+    check_bounds("triangle", SHAPE_TRIANGLE, tri, 9, 3, 0);
+    double lo[3], hi[3];
+    const double plane[4] = {0, 1, 0, 0};
+    CHECK(!shape_kinds[SHAPE_PLANE].bounds(plane, 4, 0, lo, hi));
+    const double quadric[10] = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
+    CHECK(!shape_kinds[SHAPE_QUADRIC].bounds(quadric, 10, 0, lo, hi));
+}
+
+static void test_convex_bounds(void)
+{
+    double lo[3], hi[3];
+    /* The cube 0 <= x, y, z <= 2: tight. */
+    const double cube[6][4] = {{-1, 0, 0, 0}, {1, 0, 0, -2}, {0, -1, 0, 0},
+                               {0, 1, 0, -2}, {0, 0, -1, 0}, {0, 0, 1, -2}};
+    CHECK(convex_bounds(&cube[0][0], 6, lo, hi) == 1);
+    CHECK(fabs(lo[0]) < 1e-8 && fabs(lo[1]) < 1e-8 && fabs(lo[2]) < 1e-8);
+    CHECK(fabs(hi[0] - 2) < 1e-8 && fabs(hi[1] - 2) < 1e-8 && fabs(hi[2] - 2) < 1e-8);
+    CHECK(lo[0] <= 0 && hi[0] >= 2); /* outward, never inward */
+    /* Unbounded: one face, a three-face wedge, a five-face open box. */
+    CHECK(convex_bounds(&cube[0][0], 1, lo, hi) == 0);
+    const double wedge[3][4] = {{1, 1, 0, -3}, {-1, 1, 0, -1}, {0, 0, 1, 4}};
+    CHECK(convex_bounds(&wedge[0][0], 3, lo, hi) == 0);
+    CHECK(convex_bounds(&cube[0][0], 5, lo, hi) == 0);
+    /* Six faces that leave a direction open (two of them parallel). */
+    const double slab[6][4] = {{-1, 0, 0, 0}, {1, 0, 0, -2}, {0, -1, 0, 0},
+                               {0, 1, 0, -2}, {0, -1, 0, -1}, {0, 1, 0, -3}};
+    CHECK(convex_bounds(&slab[0][0], 6, lo, hi) == 0);
+    /* A tetrahedron with corners (0,0,0), (3,0,0), (0,2,0), (0,0,1). */
+    const double tet[4][4] = {{-1, 0, 0, 0}, {0, -1, 0, 0}, {0, 0, -1, 0},
+                              {2, 3, 6, -6}};
+    CHECK(convex_bounds(&tet[0][0], 4, lo, hi) == 1);
+    CHECK(fabs(hi[0] - 3) < 1e-8 && fabs(hi[1] - 2) < 1e-8 && fabs(hi[2] - 1) < 1e-8);
+    /* Empty: x <= 0 and x >= 1 (with a closed box around): the point box. */
+    const double empty[6][4] = {{1, 0, 0, 0}, {-1, 0, 0, 1}, {0, -1, 0, -5},
+                                {0, 1, 0, -5}, {0, 0, -1, -5}, {0, 0, 1, -5}};
+    CHECK(convex_bounds(&empty[0][0], 6, lo, hi) == 1);
+    CHECK(lo[0] == 0 && hi[0] == 0 && lo[2] == 0 && hi[2] == 0);
+    /* More faces than CONVEX_MAX_FACES: left unbounded (tested by every ray). */
+    static double many[CONVEX_MAX_FACES + 1][4];
+    for (int i = 0; i <= CONVEX_MAX_FACES; i++) {
+        double th = 2 * pi * i / (CONVEX_MAX_FACES + 1);
+        many[i][0] = cos(th);
+        many[i][1] = sin(th);
+        many[i][2] = i % 2 ? 0.5 : -0.5;
+        many[i][3] = -1;
+    }
+    CHECK(convex_bounds(&many[0][0], CONVEX_MAX_FACES + 1, lo, hi) == 0);
+    /* Scale: a tiny cube far away stays tight. */
+    double far_cube[6][4];
+    memcpy(far_cube, cube, sizeof cube);
+    for (int i = 0; i < 6; i++) { /* 1e6 <= x <= 1e6 + 2e-3 ... */
+        double *f = far_cube[i];
+        int axis = i / 2;
+        f[3] = (f[axis] < 0) ? 1e6 : -(1e6 + 2e-3);
+    }
+    CHECK(convex_bounds(&far_cube[0][0], 6, lo, hi) == 1);
+    CHECK(lo[0] <= 1e6 && hi[0] >= 1e6 + 2e-3 && hi[0] - lo[0] < 2e-3 + 1e-2);
+}
+
+static void test_triangle_record(void)
+{
+    /* Counter-clockwise seen from +z: normal +z; the other way: -z. */
+    const double ccw[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const double cw[9] = {0, 0, 0, 0, 1, 0, 1, 0, 0};
+    struct shape_record rec;
+    shape_kinds[SHAPE_TRIANGLE].pack(ccw, 9, 0, &rec, NULL);
+    CHECK(rec.row[0][3] == 0 && rec.row[1][3] == 0 && rec.row[2][3] == 1);
+    CHECK(rec.row[1][0] == 1 && rec.row[2][1] == 1); /* the corners themselves */
+    shape_kinds[SHAPE_TRIANGLE].pack(cw, 9, 0, &rec, NULL);
+    CHECK(rec.row[2][3] == -1);
+    /* A mesh's triangle k. */
+    double two[18];
+    memcpy(two, cw, sizeof cw);
+    memcpy(two + 9, ccw, sizeof ccw);
+    CHECK(shape_kinds[SHAPE_MESH].primitives(two, 18) == 2);
+    shape_kinds[SHAPE_MESH].pack(two, 18, 1, &rec, NULL);
+    CHECK(rec.row[2][3] == 1);
+}
+
+static double quadric_at(const double q[10], const double x[3])
+{
+    return q[0] * x[0] * x[0] + q[1] * x[1] * x[1] + q[2] * x[2] * x[2] +
+           q[3] * x[0] * x[1] + q[4] * x[0] * x[2] + q[5] * x[1] * x[2] +
+           q[6] * x[0] + q[7] * x[1] + q[8] * x[2] + q[9];
+}
+
+static void test_quadric_record(void)
+{
+    /* An ellipsoid centered at (100, -50, 20): the record is about its
+     * center and scaled; Q and the record agree up to that scale. */
+    const double q[10] = {1, 4, 9, 0.5, 0, -0.25, -200 - 0.5 * -50, 400 - 0.5 * 100 + 0.25 * 20,
+                          -360 + 0.25 * -50, 0};
+    struct shape_record rec;
+    double extra[1][4];
+    shape_kinds[SHAPE_QUADRIC].pack(q, 10, 0, &rec, extra);
+    double r[10] = {rec.row[0][0], rec.row[0][1], rec.row[0][2], rec.row[0][3],
+                    rec.row[1][0], rec.row[1][1], rec.row[1][2], rec.row[1][3],
+                    rec.row[2][0], rec.row[2][1]};
+    double big = 0;
+    for (int i = 0; i < 10; i++)
+        big = fmax(big, fabs(r[i]));
+    CHECK(big == 1);
+    /* Linear terms vanish about the center. */
+    CHECK(fabs(r[6]) < 1e-12 && fabs(r[7]) < 1e-12 && fabs(r[8]) < 1e-12);
+    double ratio = 0;
+    int agree = 1;
+    for (int i = 0; i < 20; i++) {
+        double x[3] = {90 + i, -60 + 1.5 * i, 25 - i}, y[3];
+        vec3_sub(x, extra[0], y);
+        double a = quadric_at(q, x), b = quadric_at(r, y);
+        if (i == 0)
+            ratio = a / b;
+        agree &= fabs(a - ratio * b) <= 1e-9 * fabs(a) + 1e-9;
+    }
+    CHECK(agree);
+    /* A paraboloid (singular matrix): the origin is the reference. */
+    const double para[10] = {1, 0, 1, 0, 0, 0, 0, -1, 0, 0};
+    shape_kinds[SHAPE_QUADRIC].pack(para, 10, 0, &rec, extra);
+    CHECK(extra[0][0] == 0 && extra[0][1] == 0 && extra[0][2] == 0);
+}
+
+int main(void)
+{
+    test_round_bounds();
+    test_convex_bounds();
+    test_triangle_record();
+    test_quadric_record();
+    return unit_report();
+}

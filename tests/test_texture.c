@@ -1,0 +1,202 @@
+/* test_texture.c: texture_load and texture_decode_ppm.
+ *
+ * PPM: P6 and P3, comments anywhere in the header, maxvals 1 to 65535
+ * (16-bit samples big-endian) scaled to 8 bits, and every malformed form
+ * refused with its reason. Files: an asymmetric 3 x 2 image written as
+ * BMP (bottom-up by stb_image_write, top-down by hand), PNG and JPEG
+ * (approximately: lossy) must come back with its rows top to bottom and
+ * R, G, B in place. Prints "N passed, M failed" last. */
+#define _DEFAULT_SOURCE /* mkstemps, truncate */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <stb_image_write.h>
+
+#include "texture.h"
+
+#include "unit.h"
+
+/* A 3 x 2 image with no symmetry: rows top to bottom. */
+static const uint8_t image[2][3][3] = {
+    {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}},
+    {{255, 255, 0}, {0, 255, 255}, {40, 80, 120}},
+};
+
+static int same_as_image(const struct texture_image *t, int tolerance)
+{
+    if (t->width != 3 || t->height != 2)
+        return 0;
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 3; x++)
+            for (int c = 0; c < 3; c++)
+                if (abs((int)t->rgb[(y * 3 + x) * 3 + c] - image[y][x][c]) > tolerance)
+                    return 0;
+    return 1;
+}
+
+static int decode(const char *text, size_t len, struct texture_image *t, char *why)
+{
+    return texture_decode_ppm((const unsigned char *)text, len, t, why, 128);
+}
+
+static void test_ppm(void)
+{
+    struct texture_image t;
+    char why[128];
+    /* P3, comments between every header field and in the data. */
+    const char *p3 = "P3 # plain\n3 # width\n2\n# maxval next\n255\n"
+                     "255 0 0  0 255 0  0 0 255\n255 255 0  0 255 255  40 80 120\n";
+    CHECK(decode(p3, strlen(p3), &t, why) == 0 && same_as_image(&t, 0));
+    free(t.rgb);
+    /* P6 with a comment; binary data begins after one white space byte,
+     * even when it looks like white space itself. */
+    char p6[64];
+    int n = snprintf(p6, sizeof p6, "P6\n#c\n3 2\n255\n");
+    memcpy(p6 + n, image, sizeof image);
+    CHECK(decode(p6, (size_t)n + sizeof image, &t, why) == 0 && same_as_image(&t, 0));
+    free(t.rgb);
+    /* maxval 1000: v scaled to round(255 v / 1000). */
+    const char *thousand = "P3 1 1 1000 1000 500 2\n";
+    CHECK(decode(thousand, strlen(thousand), &t, why) == 0 && t.rgb[0] == 255 &&
+          t.rgb[1] == 128 && t.rgb[2] == 1);
+    free(t.rgb);
+    /* maxval 1: a bilevel image. */
+    const char *one = "P3 2 1 1 1 0 1 0 1 0\n";
+    CHECK(decode(one, strlen(one), &t, why) == 0 && t.rgb[0] == 255 && t.rgb[1] == 0 &&
+          t.rgb[3] == 0 && t.rgb[4] == 255);
+    free(t.rgb);
+    /* 16-bit P6, big-endian: 0xffff, 0x8000, 0x0101. */
+    const unsigned char p16[] = "P6 1 1 65535\n\xff\xff\x80\x00\x01\x01";
+    CHECK(decode((const char *)p16, sizeof p16 - 1, &t, why) == 0 && t.rgb[0] == 255 &&
+          t.rgb[1] == 128 && t.rgb[2] == 1);
+    free(t.rgb);
+}
+
+static void expect_refused(const char *text, size_t len, const char *want, int line)
+{
+    struct texture_image t;
+    char why[128] = "";
+    int rc = decode(text, len, &t, why);
+    expect(rc == -1 && strcmp(why, want) == 0 && t.rgb == NULL,
+           "line %d: rc %d, why '%s', want '%s'", line, rc, why, want);
+    if (rc == 0)
+        free(t.rgb);
+}
+
+#define REFUSED(text, want) expect_refused((text), strlen(text), (want), __LINE__)
+
+static void test_ppm_errors(void)
+{
+    const char *header = "malformed PPM header (width, height and a maxval from 1 to 65535 expected)";
+    REFUSED("P5 1 1 255 x", "not a P3 or P6 PPM image");
+    REFUSED("P3 0 1 255\n", header);
+    REFUSED("P3 1 1 0\n", header);
+    REFUSED("P3 1 1 65536\n", header);
+    REFUSED("P3 1 1\n", header);
+    REFUSED("P3 -1 1 255\n", header);
+    REFUSED("P3 9999999999 1 255\n", header);
+    REFUSED("P3 1 1 255 1 2\n", "PPM data ends early or is malformed");
+    REFUSED("P3 1 1 255 1 2 x\n", "PPM data ends early or is malformed");
+    REFUSED("P3 1 1 100 1 2 101\n", "PPM value above its maxval");
+    REFUSED("P6 2 1 255\nabcde", "PPM data ends early");
+    REFUSED("P6 1 1 255", "malformed PPM header");
+    REFUSED("P6 100000 100000 255\n", "image too large (at most 32 Mi texels)");
+}
+
+/* Writes bytes to a temporary file; its path in path. */
+static int temp_file(const void *data, size_t len, char *path, const char *suffix)
+{
+    snprintf(path, 64, "/tmp/tp2-texture-XXXXXX%s", suffix);
+    int fd = mkstemps(path, (int)strlen(suffix));
+    if (fd < 0)
+        return -1;
+    int ok = write(fd, data, len) == (ssize_t)len;
+    close(fd);
+    return ok ? 0 : -1;
+}
+
+/* A 24-bit BMP of the image, rows stored top-down (negative height). */
+static size_t top_down_bmp(unsigned char *out)
+{
+    const int row = 12; /* 3 pixels x 3 bytes = 9, padded to 12 */
+    size_t size = 54 + 2 * row;
+    memset(out, 0, size);
+    out[0] = 'B';
+    out[1] = 'M';
+    out[2] = (unsigned char)size;
+    out[10] = 54;
+    out[14] = 40;
+    out[18] = 3;
+    int32_t h = -2;
+    memcpy(out + 22, &h, 4);
+    out[26] = 1;
+    out[28] = 24;
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 3; x++)
+            for (int c = 0; c < 3; c++) /* BGR */
+                out[54 + y * row + x * 3 + c] = image[y][x][2 - c];
+    return size;
+}
+
+static void test_files(void)
+{
+    char path[64];
+    struct texture_image t;
+    char why[128];
+    const char *formats[] = {"bmp", "png", "jpg"};
+    for (int f = 0; f < 3; f++) {
+        snprintf(path, sizeof path, "/tmp/tp2-texture-%d.%s", (int)getpid(), formats[f]);
+        int ok = f == 0 ? stbi_write_bmp(path, 3, 2, 3, image)
+               : f == 1 ? stbi_write_png(path, 3, 2, 3, image, 9)
+                        : stbi_write_jpg(path, 3, 2, 3, image, 100);
+        CHECK(ok != 0);
+        int rc = texture_load(path, &t, why, sizeof why);
+        /* JPEG is lossy and subsamples color: loose. */
+        expect(rc == 0 && same_as_image(&t, f == 2 ? 90 : 0), "%s read back: rc %d %s",
+               formats[f], rc, rc ? why : "");
+        free(t.rgb);
+        unlink(path);
+    }
+    unsigned char bmp[128];
+    size_t n = top_down_bmp(bmp);
+    if (temp_file(bmp, n, path, ".bmp") == 0) {
+        int rc = texture_load(path, &t, why, sizeof why);
+        expect(rc == 0 && same_as_image(&t, 0), "top-down BMP: rc %d %s", rc, rc ? why : "");
+        free(t.rgb);
+        unlink(path);
+    }
+    /* A file that is no image, a truncated PNG, a missing file. */
+    const char junk[] = "GIF87a? no: just text";
+    if (temp_file(junk + 6, sizeof junk - 7, path, ".png") == 0) {
+        int rc = texture_load(path, &t, why, sizeof why);
+        expect(rc == -1 && strcmp(why, "not a BMP, PNG, JPEG or PPM image") == 0,
+               "junk: rc %d, %s", rc, why);
+        unlink(path);
+    }
+    snprintf(path, sizeof path, "/tmp/tp2-texture-%d.png", (int)getpid());
+    stbi_write_png(path, 3, 2, 3, image, 9);
+    FILE *f = fopen(path, "r+b");
+    if (f) {
+        fseek(f, 0, SEEK_END);
+        long len = ftell(f);
+        fclose(f);
+        CHECK(truncate(path, len / 2) == 0);
+    }
+    int rc = texture_load(path, &t, why, sizeof why);
+    expect(rc == -1 && strncmp(why, "cannot decode the image", 23) == 0,
+           "truncated PNG: rc %d, %s", rc, why);
+    unlink(path);
+    rc = texture_load("/tmp/tp2-no-such-texture.ppm", &t, why, sizeof why);
+    expect(rc == -1 && strcmp(why, "No such file or directory") == 0, "missing: %s", why);
+}
+
+int main(void)
+{
+    test_ppm();
+    test_ppm_errors();
+    test_files();
+    return unit_report();
+}
