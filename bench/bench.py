@@ -172,27 +172,25 @@ def tp2_env(use_icd):
     return env
 
 
-def has_texmap(path):
+def has_texmap(tp2, path):
     try:
-        with open(path, encoding='latin-1') as fh:
-            sc = scene2pov.parse_scene(fh.read(), path)
+        sc = scene2pov.load_scene(tp2, path)
     except (OSError, scene2pov.SceneError):
         return False
     return any(p['type'] == 'texmap' for p in sc['pigments'])
 
 
-def default_scenes(corpus):
+def default_scenes(tp2, corpus):
     found = []
     if corpus and os.path.isdir(corpus):
         found += sorted(glob.glob(os.path.join(corpus, '*.txt')))
         found += sorted(glob.glob(os.path.join(corpus, '*.in')))
     found += sorted(glob.glob(os.path.join(REPO, 'scenes', '*.txt')))
-    return [p for p in found if not has_texmap(p)]
+    return [p for p in found if not has_texmap(tp2, p)]
 
 
-def convert(scene, w, h, pov_path, bailout):
-    with open(scene, encoding='latin-1') as fh:
-        sc = scene2pov.parse_scene(fh.read(), scene)
+def convert(tp2, scene, w, h, pov_path, bailout):
+    sc = scene2pov.load_scene(tp2, scene)
     sdl, opts = scene2pov.convert(sc, w, h, os.path.basename(scene),
                                   os.path.dirname(pov_path), bailout)
     with open(pov_path, 'w') as fh:
@@ -268,7 +266,7 @@ def smoke(args, env):
             sys.stdout.write(tail)
         pov = os.path.join(work, 'scene.pov')
         try:
-            extra = convert(scene, w, h, pov, args.bailout)
+            extra = convert(args.tp2, scene, w, h, pov, args.bailout)
         except (OSError, scene2pov.SceneError) as e:
             print('smoke: scene2pov failed: %s' % e)
             return 1
@@ -293,7 +291,7 @@ def bench_one(args, env, scene, w, h, work):
     row = {'scene': os.path.basename(scene), 'width': w, 'height': h,
            'runs': args.runs, 'tp2_status': 'ok', 'povray_status': 'ok'}
     try:
-        extra = convert(scene, w, h, pov, args.bailout)
+        extra = convert(args.tp2, scene, w, h, pov, args.bailout)
     except (OSError, scene2pov.SceneError, ValueError) as e:
         row['povray_status'] = 'scene2pov: %s' % e
         extra = None
@@ -512,7 +510,7 @@ def main(argv=None):
         assert all(len(s) == 2 and s[0] > 0 and s[1] > 0 for s in sizes)
     except (ValueError, AssertionError):
         ap.error('--sizes takes WxH[,WxH...]')
-    scenes = args.scenes or default_scenes(args.corpus)
+    scenes = args.scenes or default_scenes(args.tp2, args.corpus)
     if not scenes:
         print('bench: no scenes found', file=sys.stderr)
         return 2

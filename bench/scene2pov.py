@@ -2,7 +2,10 @@
 """scene2pov.py - convert a tp2 scene file into POV-Ray 3.7 SDL.
 
 Usage:
-    python3 bench/scene2pov.py SCENE [W H] [-o OUT.pov]
+    python3 bench/scene2pov.py SCENE [W H] [-o OUT.pov] [--tp2 build/tp2]
+
+The scene is read by tp2 itself (tp2 --dump-scene), so it means here
+exactly what it means to tp2.
 
 W H is the image size the .pov file is written for (the camera's aspect
 ratio depends on it); default: the scene's own size (header variant), else
@@ -56,250 +59,73 @@ of each output file (see APPROXIMATIONS below); exact translations:
 """
 
 import argparse
+import json
 import math
 import os
-import re
+import subprocess
 import sys
 
 # ---------------------------------------------------------------------------
-# Lexer: SPEC §2. '#' comments; tokens are separated by white space; a token
-# starting with a digit, sign or '.' is a number read like C's strtod, and a
-# number may be followed directly by another ("1-10 5" is 1, -10, 5); any
-# other run of non-blank bytes is a word.
-
-_SPACE = ' \t\n\r\v\f'
-_DEC = re.compile(r'[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?')
-_HEX = re.compile(r'[+-]?0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)'
-                  r'(?:[pP][+-]?\d+)?')
-_NONFINITE = re.compile(r'[+-]?(?:inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)',
-                        re.IGNORECASE)
-
+# Scenes are read by tp2 itself (tp2 --dump-scene: the grammar lives in one
+# place); this turns its JSON into the dictionaries convert() works on.
 
 class SceneError(Exception):
     pass
 
 
-def _strtod_prefix(text, pos):
-    """(length, value) of the number strtod reads at pos, (0, None) if none."""
-    if pos >= len(text) or text[pos] not in '0123456789+-.':
-        return 0, None
-    best = (0, None)
-    m = _HEX.match(text, pos)
-    if m:
-        s = m.group(0)
-        mant = s
-        if 'p' not in s.lower():
-            mant = s + 'p0'
-        try:
-            best = (len(s), float.fromhex(mant))
-        except ValueError:
-            best = (0, None)
-    m = _DEC.match(text, pos)
-    if m and len(m.group(0)) > best[0]:
-        best = (len(m.group(0)), float(m.group(0)))
-    m = _NONFINITE.match(text, pos)
-    if m and len(m.group(0)) > best[0]:
-        best = (len(m.group(0)), float('nan'))
-    return best
+def _pigment(p):
+    kind = p['kind']
+    if kind == 'solid':
+        return {'type': 'solid', 'c': p['color']}
+    if kind == 'checker':
+        return {'type': 'checker', 'c1': p['color1'], 'c2': p['color2'], 's': p['side']}
+    if kind == 'gradient':
+        return {'type': 'gradient', 'p0': p['p0'], 'p1': p['p1'], 'c0': p['color0'],
+                'c1': p['color1']}
+    return {'type': 'texmap', 'file': os.path.abspath(p['file']), 's': p['s'], 't': p['t']}
 
 
-class Lexer:
-    def __init__(self, text, filename):
-        self.text = text
-        self.name = filename
-        self.pos = 0
-        self.line = 1
-        self.col = 1
-
-    def _advance(self, n):
-        for ch in self.text[self.pos:self.pos + n]:
-            if ch == '\n':
-                self.line += 1
-                self.col = 1
-            else:
-                self.col += 1
-        self.pos += n
-
-    def _skip(self):
-        t = self.text
-        while self.pos < len(t):
-            c = t[self.pos]
-            if c in _SPACE:
-                self._advance(1)
-            elif c == '#':
-                end = t.find('\n', self.pos)
-                self._advance((len(t) if end < 0 else end) - self.pos)
-            else:
-                break
-
-    def _run_end(self, pos):
-        t = self.text
-        while pos < len(t) and t[pos] not in _SPACE and t[pos] != '#':
-            pos += 1
-        return pos
-
-    def error(self, what, line=None, col=None):
-        raise SceneError('%s:%d:%d: error: %s' % (
-            self.name, line or self.line, col or self.col, what))
-
-    def peek_is_number(self):
-        self._skip()
-        return _strtod_prefix(self.text, self.pos)[0] > 0
-
-    def at_end(self):
-        self._skip()
-        return self.pos >= len(self.text)
-
-    def _found(self):
-        if self.pos >= len(self.text):
-            return 'end of file'
-        return "'%s'" % self.text[self.pos:self._run_end(self.pos)][:32]
-
-    def number(self, what='a number'):
-        self._skip()
-        n, v = _strtod_prefix(self.text, self.pos)
-        if n == 0:
-            self.error('expected %s, found %s' % (what, self._found()))
-        after = self.pos + n
-        if (after < len(self.text) and self.text[after] not in _SPACE
-                and self.text[after] != '#'
-                and _strtod_prefix(self.text, after)[0] == 0):
-            self.error('malformed number %s' % self._found())
-        if not math.isfinite(v):
-            self.error('expected a finite number, found %s' % self._found())
-        self._advance(n)
-        return v
-
-    def integer(self, what, lo=0):
-        self._skip()
-        line, col = self.line, self.col
-        v = self.number(what)
-        if v != int(v) or v < lo:
-            self.error('expected %s, found %r' % (what, v), line, col)
-        return int(v)
-
-    def word(self, what='a keyword'):
-        self._skip()
-        if self.pos >= len(self.text):
-            self.error('expected %s, found end of file' % what)
-        end = self._run_end(self.pos)
-        w = self.text[self.pos:end]
-        self._advance(end - self.pos)
-        return w
-
-    def numbers(self, n, what='a number'):
-        return [self.number(what) for _ in range(n)]
+def _object(o):
+    v = o['numbers']
+    d = {'pig': o['pigment'], 'fin': o['finish'], 'type': o['kind']}
+    if o['kind'] == 'sphere':
+        d['c'], d['r'] = v[0:3], v[3]
+    elif o['kind'] == 'plane':
+        d['abcd'] = v
+    elif o['kind'] == 'polyhedron':
+        d['faces'] = [v[k:k + 4] for k in range(0, len(v), 4)]
+    elif o['kind'] == 'mesh':
+        d['tris'] = [(v[k:k + 3], v[k + 3:k + 6], v[k + 6:k + 9]) for k in range(0, len(v), 9)]
+    else:
+        d['v'] = v
+    return d
 
 
-# ---------------------------------------------------------------------------
-# Parser: SPEC §3.
-
-def parse_scene(text, filename):
-    lx = Lexer(text, filename)
-    sc = {'file': filename, 'size': None, 'directives': {}}
-    lx._skip()
-    if not lx.at_end() and not lx.peek_is_number():
-        sc['outname'] = lx.word()
-        w = lx.integer('a positive integer image width', 1)
-        h = lx.integer('a positive integer image height', 1)
-        sc['size'] = (w, h)
-    sc['eye'] = lx.numbers(3)
-    sc['center'] = lx.numbers(3)
-    sc['up'] = lx.numbers(3)
-    sc['fov'] = lx.number('the field of view')
-    if not 0 < sc['fov'] < 180:
-        lx.error('the field of view must be in (0, 180)')
-
-    nl = lx.integer('a non-negative integer count')
-    sc['lights'] = []
-    for _ in range(nl):
-        v = lx.numbers(9)
-        sc['lights'].append({'pos': v[0:3], 'color': v[3:6], 'att': v[6:9]})
-
-    npig = lx.integer('a non-negative integer count')
-    sc['pigments'] = []
-    for _ in range(npig):
-        kw = lx.word('a pigment type')
-        if kw == 'solid':
-            sc['pigments'].append({'type': 'solid', 'c': lx.numbers(3)})
-        elif kw == 'checker':
-            v = lx.numbers(7)
-            sc['pigments'].append({'type': 'checker', 'c1': v[0:3],
-                                   'c2': v[3:6], 's': v[6]})
-        elif kw == 'gradient':
-            v = lx.numbers(12)
-            sc['pigments'].append({'type': 'gradient', 'p0': v[0:3],
-                                   'p1': v[3:6], 'c0': v[6:9], 'c1': v[9:12]})
-        elif kw == 'texmap':
-            f = lx.word('an image file name')
-            v = lx.numbers(8)
-            path = os.path.join(os.path.dirname(os.path.abspath(filename)), f)
-            sc['pigments'].append({'type': 'texmap', 'file': path,
-                                   's': v[0:4], 't': v[4:8]})
-        else:
-            lx.error("expected a pigment type, found '%s'" % kw)
-
-    nf = lx.integer('a non-negative integer count')
-    sc['finishes'] = []
-    for _ in range(nf):
-        v = lx.numbers(7)
-        sc['finishes'].append(dict(zip(
-            ('ka', 'kd', 'ks', 'n', 'kr', 'kt', 'ior'), v)))
-
-    no = lx.integer('a non-negative integer count')
-    sc['objects'] = []
-    for _ in range(no):
-        pi = lx.integer('a pigment index')
-        fi = lx.integer('a finish index')
-        if pi >= len(sc['pigments']) or fi >= len(sc['finishes']):
-            lx.error('pigment or finish index out of range')
-        kw = lx.word('an object type')
-        o = {'pig': pi, 'fin': fi, 'type': kw}
-        if kw == 'sphere':
-            o['c'] = lx.numbers(3)
-            o['r'] = lx.number()
-        elif kw == 'plane':
-            o['abcd'] = lx.numbers(4)
-        elif kw == 'polyhedron':
-            n = lx.integer('a face count')
-            o['faces'] = [lx.numbers(4) for _ in range(n)]
-        elif kw == 'box':
-            o['v'] = lx.numbers(6)
-        elif kw == 'cylinder':
-            o['v'] = lx.numbers(7)
-        elif kw == 'cone':
-            o['v'] = lx.numbers(8)
-        elif kw == 'torus':
-            o['v'] = lx.numbers(8)
-        elif kw == 'quadric':
-            o['v'] = lx.numbers(10)
-        elif kw == 'triangle':
-            o['v'] = lx.numbers(9)
-        elif kw == 'mesh':
-            f = lx.word('an OBJ file name')
-            o['file'] = os.path.join(os.path.dirname(os.path.abspath(filename)), f)
-        else:
-            lx.error("expected an object type, found '%s'" % kw)
-        sc['objects'].append(o)
-
-    while not lx.at_end():
-        kw = lx.word('a directive')
-        if kw in sc['directives']:
-            lx.error("directive '%s' given twice" % kw)
-        if kw == 'samples':
-            sc['directives'][kw] = lx.integer('a sample count', 1)
-        elif kw == 'lens':
-            sc['directives'][kw] = lx.numbers(2)
-        elif kw == 'fog':
-            sc['directives'][kw] = lx.numbers(4)
-        elif kw == 'arealight':
-            i = lx.integer('a light index', 1)
-            r = lx.number()
-            n = lx.integer('a sample count', 1)
-            sc['directives'][kw] = (i, r, n)
-        else:
-            lx.error("expected a directive (samples, lens, fog, arealight), "
-                     "found '%s'" % kw)
+def load_scene(tp2, path):
+    """The scene at path as tp2 reads it; SceneError with tp2's message if
+    tp2 refuses it."""
+    r = subprocess.run([tp2, '--dump-scene', path], capture_output=True)
+    if r.returncode != 0:
+        raise SceneError(r.stderr.decode('utf-8', 'replace').strip())
+    j = json.loads(r.stdout)
+    sc = {'file': path, 'size': tuple(j['size']) if j['size'] else None,
+          'eye': j['eye'], 'center': j['center'], 'up': j['up'], 'fov': j['fov'],
+          'lights': [{'pos': l['pos'], 'color': l['color'], 'att': l['att']}
+                     for l in j['lights']],
+          'pigments': [_pigment(p) for p in j['pigments']],
+          'finishes': j['finishes'],
+          'objects': [_object(o) for o in j['objects']],
+          'directives': {}}
+    d = sc['directives']
+    if j['samples'] is not None:
+        d['samples'] = j['samples']
+    if j['lens'] is not None:
+        d['lens'] = j['lens']
+    if j['fog'] is not None:
+        d['fog'] = j['fog']['color'] + [j['fog']['density']]
+    if j['arealight'] is not None:
+        a = j['arealight']
+        d['arealight'] = (a['light'], a['radius'], a['samples'])
     return sc
 
 
@@ -441,25 +267,6 @@ def pov_matrix(R, t):
     vals = [R[0][0], R[1][0], R[2][0], R[0][1], R[1][1], R[2][1],
             R[0][2], R[1][2], R[2][2], t[0], t[1], t[2]]
     return 'matrix <%s>' % ', '.join(f(x) for x in vals)
-
-
-def read_obj(path):
-    verts, tris = [], []
-    with open(path) as fh:
-        for line in fh:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == 'v':
-                verts.append([float(x) for x in parts[1:4]])
-            elif parts[0] == 'f':
-                idx = []
-                for p in parts[1:]:
-                    i = int(p.split('/')[0])
-                    idx.append(i - 1 if i > 0 else len(verts) + i)
-                for k in range(1, len(idx) - 1):
-                    tris.append((verts[idx[0]], verts[idx[k]], verts[idx[k + 1]]))
-    return tris
 
 
 def bmp_to_ppm(src, dst):
@@ -753,7 +560,7 @@ def convert(sc, width, height, source_name, image_dir='.', bailout=1 / 255):
             shape = 'triangle { %s, %s, %s' % (vec(vv[0:3]), vec(vv[3:6]),
                                                vec(vv[6:9]))
         elif t == 'mesh':
-            tris = read_obj(o['file'])
+            tris = o['tris']
             shape = 'mesh { ' + ' '.join(
                 'triangle { %s, %s, %s }' % (vec(a), vec(b), vec(c))
                 for a, b, c in tris)
@@ -828,13 +635,14 @@ def main(argv=None):
     ap.add_argument('-o', '--output', help='output .pov (default: stdout)')
     ap.add_argument('--bailout', type=float, default=1 / 255,
                     help="adc_bailout, as tp2's --bailout (default 1/255)")
+    ap.add_argument('--tp2', default=os.path.join(os.path.dirname(os.path.dirname(
+                        os.path.abspath(__file__))), 'build', 'tp2'),
+                    help='the tp2 that reads the scene (default build/tp2)')
     args = ap.parse_args(argv)
     if len(args.size) not in (0, 2):
         ap.error('give both W and H or neither')
     try:
-        with open(args.scene, 'r', encoding='latin-1') as fh:
-            text = fh.read()
-        sc = parse_scene(text, args.scene)
+        sc = load_scene(args.tp2, args.scene)
     except SceneError as e:
         print(str(e), file=sys.stderr)
         return 1
