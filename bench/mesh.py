@@ -1,7 +1,14 @@
 #!/usr/bin/env python3
-"""mesh.py - writes a trefoil-knot tube as a Wavefront OBJ (tp2's `mesh`).
+"""mesh.py - writes a trefoil-knot tube or a sphere as a Wavefront OBJ
+(tp2's `mesh`).
 
     python3 bench/mesh.py OUT.obj [--along U] [--around V] [--radius R]
+    python3 bench/mesh.py OUT.obj --sphere [--along U] [--around V] [--radius R]
+
+--sphere: a latitude-longitude sphere of U segments around and V from pole
+to pole, centered at --center (its pole quads have a corner twice, so
+tp2 drops one of their two triangles as degenerate: 2 U V - 2 U triangles);
+--along 1000 --around 502 gives 1,002,000 triangles.
 
 The tube follows the trefoil knot (sin t + 2 sin 2t, cos t - 2 cos 2t,
 -sin 3t), scaled by --scale, with U segments along the knot and V around
@@ -62,6 +69,25 @@ def write(path, along, around, radius, scale, center):
                     f.write("f " + " ".join(f"{q + 1}//" for q in quad) + "\n")
 
 
+def write_sphere(path, around, rows, radius, center):
+    with open(path, "w") as f:
+        f.write(f"# sphere: {around} x {rows} quads (bench/mesh.py --sphere)\n")
+        for j in range(rows + 1):
+            th = math.pi * j / rows
+            for i in range(around):
+                ph = 2 * math.pi * i / around
+                v = (center[0] + radius * math.sin(th) * math.cos(ph),
+                     center[1] + radius * math.cos(th),
+                     center[2] + radius * math.sin(th) * math.sin(ph))
+                f.write(f"v {v[0]:.7f} {v[1]:.7f} {v[2]:.7f}\n")
+        for j in range(rows):
+            for i in range(around):
+                i1 = (i + 1) % around
+                a, b = j * around + i + 1, j * around + i1 + 1
+                c, d = (j + 1) * around + i1 + 1, (j + 1) * around + i + 1
+                f.write(f"f {a} {b} {c} {d}\n")   # counter-clockwise from outside
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out")
@@ -70,8 +96,12 @@ def main():
     ap.add_argument("--radius", type=float, default=0.35, help="tube radius")
     ap.add_argument("--scale", type=float, default=0.6, help="knot scale")
     ap.add_argument("--center", type=float, nargs=3, default=(0, 2.2, 0))
+    ap.add_argument("--sphere", action="store_true", help="a sphere instead of the knot")
     a = ap.parse_args()
-    write(a.out, a.along, a.around, a.radius, a.scale, a.center)
+    if a.sphere:
+        write_sphere(a.out, a.along, a.around, a.radius, a.center)
+    else:
+        write(a.out, a.along, a.around, a.radius, a.scale, a.center)
 
 
 if __name__ == "__main__":
