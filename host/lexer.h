@@ -56,6 +56,11 @@ int token_is_nonfinite_word(const struct token *tok);
  * out (when size > 0); LEXER_QUOTE_SIZE is always enough. */
 void lexer_quote(const char *s, size_t len, char *out, size_t size);
 
+/* A new string: s with every byte outside printable ASCII written as
+ * \xNN, as lexer_quote shows tokens, but never cut; for file names in
+ * messages. NULL when out of memory. */
+char *lexer_escape(const char *s);
+
 /* What a message says was found: "end of file" or the quoted token. */
 void token_describe(const struct token *tok, char *out, size_t size);
 
