@@ -156,6 +156,39 @@ def case_progress_bar(c):
     c.expect(status == 0 and err == "", f"a pipe: exit {status}, {err!r}")
 
 
+def case_large_image(c):
+    """8192 x 8192 renders on lavapipe (a whole float image, 1 GiB, once had
+    to fit its 128 MiB storage-buffer limit) in bounded memory: the rows
+    stream to the file band by band, so tp2's peak RSS stays below 300 MiB
+    (about 180 measured with validation on; holding even the 8-bit image
+    would add 192 MiB). Every pixel of the empty scene is the background."""
+    import resource
+    scene = tp2test.scene_file(c.tmp, "empty.txt", "0 0 0\n0 0 -1\n0 1 0\n45\n"
+                               "1\n0 0 0 1 1 1 0 0 0\n0\n0\n0\n")
+    out = c.out()
+    status, _, err = run(c.tp2, [scene, out, "8192", "8192"])
+    rss_mib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+    c.require(status == 0 and err == "", f"exit {status}, stderr {err!r}")
+    c.expect(rss_mib < 300, f"peak RSS {rss_mib:.0f} MiB")
+    header = b"P6\n8192 8192\n255\n"
+    with open(out, "rb") as f:
+        c.expect(f.read(len(header)) == header, "header")
+        gray = bytes([128]) * (1 << 20)
+        total = 0
+        while chunk := f.read(1 << 20):
+            c.require(chunk == gray[:len(chunk)], f"a pixel other than gray near byte {total}")
+            total += len(chunk)
+    c.expect(total == 8192 * 8192 * 3, f"{total} bytes of pixels")
+
+
+def case_extreme_shapes(c):
+    """The widest and the tallest images SPEC allows render in full."""
+    for name, w, h in (("wide.ppm", 32768, 8), ("tall.ppm", 8, 32768)):
+        c.renders([SCENE, c.out(name), str(w), str(h)], (w, h), name)
+        want = len(f"P6\n{w} {h}\n255\n") + w * h * 3
+        c.expect(os.path.getsize(c.out(name)) == want, f"{name}: {os.path.getsize(c.out(name))} bytes")
+
+
 def case_formats(c):
     """.png and .pfm outputs are written with their signatures."""
     for name, magic in (("o.png", b"\x89PNG"), ("o.pfm", b"PF\n"), ("o.PPM", b"P6\n")):

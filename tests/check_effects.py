@@ -252,6 +252,25 @@ def case_pipeline_cache(c):
              "an unwritable cache folder changed the image")
 
 
+def case_bands_agree(c):
+    """Bands of 8 rows (TP2_BAND_BYTES=1: 27 bands) give the very bytes of
+    the default bands (two of 200 rows here), in every format, with several
+    samples per pixel: rows land where they belong and every band gets all
+    its samples."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    for ext in ("pfm", "png", "ppm"):
+        outs = []
+        for name, env in (("one", {}), ("many", {"TP2_BAND_BYTES": "1"})):
+            out = os.path.join(c.tmp, f"{name}.{ext}")
+            status, _, err = run(c.tp2, ["--stats", "--spp", "3", scene, out, "333", "211"], env)
+            c.require(status == 0, f"{name}.{ext}: exit {status}: {err}")
+            if name == "many":
+                c.expect("27 bands of 8 rows" in err, f"many.{ext}: {err!r}")
+            with open(out, "rb") as f:
+                outs.append(f.read())
+        c.expect(outs[0] == outs[1], f".{ext}: 27 bands and 1 band differ")
+
+
 def case_stats(c):
     """--stats names every phase and counts W x H x spp camera rays."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
