@@ -9,6 +9,7 @@
 #include "render.h"
 #include "scene.h"
 #include "scene_parse.h"
+#include "tempfile.h"
 #include "vk_context.h"
 
 enum { EXIT_USAGE = 2 };
@@ -101,6 +102,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
 int main(int argc, char **argv)
 {
     struct cli c;
+    tempfile_install_handlers(); /* before any thread: they inherit it */
     if (cli_parse(argc, argv, &c) != 0)
         return EXIT_USAGE;
     if (c.help) {

@@ -3,7 +3,13 @@
 
 `check_cli.py --list` prints the case names. Each case runs tp2 in a fresh
 folder and checks exit status, the message, and which files exist after."""
+import ctypes
 import os
+import select
+import signal
+import stat
+import struct
+import subprocess
 import sys
 
 import tp2test
@@ -12,6 +18,9 @@ from tp2test import run
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "render", "cli.txt")
 PARSE_ERROR = os.path.join(HERE, "errors", "not-a-number.txt")
+DEMO = os.path.join(HERE, "..", "scenes", "demo.txt")
+# With no Vulkan driver, tp2 fails as soon as it creates its instance.
+NO_VULKAN = {"VK_ICD_FILENAMES": "/nonexistent/icd.json", "VK_DRIVER_FILES": "/nonexistent/icd.json"}
 
 
 def ppm_size(path):
@@ -84,6 +93,208 @@ def case_output_dir_missing(c):
     status, _, err = run(c.tp2, [SCENE, os.path.join(c.tmp, "no", "out.ppm"), "8", "6"])
     c.expect(status == 1 and err.startswith("tp2: cannot write"), f"exit {status} {err!r}")
     c.expect(os.listdir(c.tmp) == [], f"wrote {os.listdir(c.tmp)}")
+
+
+def case_output_refused_before_render(c):
+    """An output that cannot be written is refused before any Vulkan work:
+    with no Vulkan driver at all, the only message is the output's, so the
+    check came first. Exit 1, one line, nothing left behind."""
+    folder = c.out("folder.ppm")
+    os.mkdir(folder)
+    for out, reason in ((c.out("missing/out.ppm"), os.strerror(2)),
+                        (folder, os.strerror(21))):
+        status, _, err = run(c.tp2, [SCENE, out, "8", "6"], NO_VULKAN)
+        c.expect(status == 1, f"{out}: exit {status}")
+        c.expect(err == f"tp2: cannot write '{out}': {reason}\n", f"{out}: stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == ["folder.ppm"] and os.listdir(folder) == [],
+             f"left {os.listdir(c.tmp)}")
+
+
+def as_other_user():
+    """preexec_fn for a run without root's power to write anywhere: user
+    nobody when the tests run as root, else nothing to change."""
+    if os.geteuid() == 0:
+        os.setgid(65534)
+        os.setuid(65534)
+
+
+def case_output_folder_read_only(c):
+    """A read-only folder is refused before any Vulkan work (as user nobody
+    when the tests run as root, since root writes anywhere)."""
+    folder = c.out("ro")
+    os.mkdir(folder)
+    os.chmod(c.tmp, 0o755)
+    os.chmod(folder, 0o555)
+    out = os.path.join(folder, "out.ppm")
+    env = dict(os.environ, **NO_VULKAN)
+    r = subprocess.run([c.tp2, SCENE, out, "8", "6"], capture_output=True, env=env,
+                       preexec_fn=as_other_user, timeout=600)
+    err = r.stderr.decode("utf-8", "replace")
+    c.expect(r.returncode == 1, f"exit {r.returncode}")
+    c.expect(err == f"tp2: cannot write '{out}': {os.strerror(13)}\n", f"stderr {err!r}")
+    c.expect(os.listdir(folder) == [], f"left {os.listdir(folder)}")
+
+
+def case_output_mode_kept(c):
+    """Replacing an output keeps its mode (0600 stays 0600); a new output
+    gets 0666 & ~umask."""
+    path = c.out()
+    with open(path, "wb") as f:
+        f.write(b"old")
+    os.chmod(path, 0o600)
+    c.renders([SCENE, path, "9", "7"], (9, 7))
+    mode = stat.S_IMODE(os.stat(path).st_mode)
+    c.expect(mode == 0o600, f"replaced output has mode {mode:o}")
+    new = c.out("new.ppm")
+    r = subprocess.run([c.tp2, SCENE, new, "9", "7"], capture_output=True,
+                       preexec_fn=lambda: os.umask(0o027), timeout=600)
+    c.expect(r.returncode == 0, f"exit {r.returncode} {r.stderr!r}")
+    mode = stat.S_IMODE(os.stat(new).st_mode)
+    c.expect(mode == 0o640, f"new output under umask 027 has mode {mode:o}")
+
+
+def case_output_long_name(c):
+    """Output names of 245 to 255 bytes (NAME_MAX) work: the temporary file
+    has a short name of its own."""
+    for n in (245, 250, 255):
+        name = "n" * (n - 4) + ".png"
+        status, _, err = run(c.tp2, [SCENE, c.out(name), "9", "7"])
+        c.expect(status == 0 and err == "", f"{n}-byte name: exit {status}, {err!r}")
+        c.expect(os.listdir(c.tmp) == [name], f"{n}-byte name: left {os.listdir(c.tmp)}")
+        os.unlink(c.out(name))
+
+
+class FolderWatch:
+    """inotify on a folder: created and modified files, as they happen,
+    without polling (Linux; ctypes on the C library)."""
+    IN_MODIFY, IN_CREATE = 0x2, 0x100
+
+    def __init__(self, folder):
+        self.folder = folder
+        self.libc = ctypes.CDLL(None, use_errno=True)
+        self.fd = self.libc.inotify_init1(os.O_CLOEXEC)
+        assert self.fd >= 0, "inotify_init1 failed"
+        wd = self.libc.inotify_add_watch(self.fd, folder.encode(),
+                                         self.IN_MODIFY | self.IN_CREATE)
+        assert wd >= 0, "inotify_add_watch failed"
+
+    def wait(self, proc, want, min_size=0):
+        """Blocks until an event with a mask bit of want names a temporary
+        file of tp2 that then holds more than min_size bytes; returns False
+        if proc ended first. The select timeout only lets the loop notice
+        that; nothing is timed."""
+        while True:
+            ready, _, _ = select.select([self.fd], [], [], 1.0)
+            if not ready:
+                if proc.poll() is not None:
+                    return False
+                continue
+            data = os.read(self.fd, 65536)
+            at = 0
+            while at < len(data):
+                _, mask, _, n = struct.unpack_from("iIII", data, at)
+                name = data[at + 16:at + 16 + n].rstrip(b"\0").decode()
+                at += 16 + n
+                if mask & want and name.startswith(".tp2-") and \
+                        self.size(name) > min_size:
+                    return True
+
+    def size(self, name):
+        try:
+            return os.path.getsize(os.path.join(self.folder, name))
+        except OSError:
+            return -1
+
+    def close(self):
+        os.close(self.fd)
+
+
+GUARDED = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+def default_signals(ignored=()):
+    """preexec_fn: the guarded signals at their defaults (a test runner in
+    the background may have left SIGINT ignored), except those ignored."""
+    def reset():
+        for sig in GUARDED:
+            signal.signal(sig, signal.SIG_IGN if sig in ignored else signal.SIG_DFL)
+    return reset
+
+
+def signal_case(c, sig, ext, when):
+    """Starts a long render over an existing output of mode 0600, sends sig
+    once tp2's temporary file appears (when = FolderWatch.IN_CREATE: the
+    render has not begun) or first holds rows (IN_MODIFY, past 64 bytes:
+    more than any header, so mid-write),
+    and checks that tp2 died of the signal, no temporary file is left and
+    the old output is intact."""
+    path = c.out("out." + ext)
+    with open(path, "wb") as f:
+        f.write(b"old")
+    os.chmod(path, 0o600)
+    watch = FolderWatch(c.tmp)
+    proc = subprocess.Popen([c.tp2, DEMO, path, "16384", "16384"], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, preexec_fn=default_signals())
+    try:
+        seen = watch.wait(proc, when, 64 if when == FolderWatch.IN_MODIFY else -1)
+        proc.send_signal(sig)
+        _, err = proc.communicate(timeout=600)
+    finally:
+        watch.close()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    c.require(seen, f"tp2 ended before the event: exit {proc.returncode} {err!r}")
+    c.expect(proc.returncode == -sig, f"exit {proc.returncode}, expected death by {sig}")
+    c.expect(os.listdir(c.tmp) == ["out." + ext], f"left {os.listdir(c.tmp)}")
+    with open(path, "rb") as f:
+        c.expect(f.read() == b"old", "the old output changed")
+    mode = stat.S_IMODE(os.stat(path).st_mode)
+    c.expect(mode == 0o600, f"the old output's mode is now {mode:o}")
+
+
+def case_sigint_before_render(c):
+    """SIGINT once the temporary file exists, before any row: removed."""
+    signal_case(c, signal.SIGINT, "ppm", FolderWatch.IN_CREATE)
+
+
+def case_sigterm_during_write(c):
+    """SIGTERM while rows are being written (PPM): the partial file goes."""
+    signal_case(c, signal.SIGTERM, "ppm", FolderWatch.IN_MODIFY)
+
+
+def case_sighup_during_write_png(c):
+    """SIGHUP while PNG rows are being written: the partial file goes."""
+    signal_case(c, signal.SIGHUP, "png", FolderWatch.IN_MODIFY)
+
+
+def case_sigint_during_write_pfm(c):
+    """SIGINT while PFM rows are being written at their offsets."""
+    signal_case(c, signal.SIGINT, "pfm", FolderWatch.IN_MODIFY)
+
+
+def case_sighup_ignored_stays_ignored(c):
+    """Under nohup (SIGHUP ignored) tp2 leaves SIGHUP ignored: it renders
+    on; a later SIGINT still removes the temporary file."""
+    watch = FolderWatch(c.tmp)
+    proc = subprocess.Popen([c.tp2, DEMO, c.out(), "16384", "16384"], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE,
+                            preexec_fn=default_signals(ignored=(signal.SIGHUP,)))
+    try:
+        seen = watch.wait(proc, FolderWatch.IN_CREATE, -1)
+        proc.send_signal(signal.SIGHUP)
+        # Rows arriving after the SIGHUP show that tp2 went on.
+        went_on = seen and watch.wait(proc, FolderWatch.IN_MODIFY, 64)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=600)
+    finally:
+        watch.close()
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    c.require(seen and went_on, f"tp2 ended early: exit {proc.returncode} {err!r}")
+    c.expect(proc.returncode == -signal.SIGINT, f"exit {proc.returncode}")
+    c.expect(os.listdir(c.tmp) == [], f"left {os.listdir(c.tmp)}")
 
 
 def case_bad_device(c):
