@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include "lexer.h"
 #include "scene.h"
 
 #include <errno.h>
@@ -38,21 +39,28 @@ void cli_usage(FILE *out)
           out);
 }
 
+/* Prints "tp2: " fmt (with arg escaped as lexer_escape does: arguments
+ * can hold any bytes) and a hint; returns -1. */
 static int usage_error(const char *fmt, const char *arg)
 {
+    char *shown = lexer_escape(arg);
     fputs("tp2: ", stderr);
-    fprintf(stderr, fmt, arg);
+    fprintf(stderr, fmt, shown ? shown : "?");
     fputs("\ntp2: see 'tp2 --help'\n", stderr);
+    free(shown);
     return -1;
 }
 
-/* A decimal integer in [lo, hi], the whole string; -1 if not. */
+/* A decimal integer in [lo, hi], the whole string, digits only (no sign
+ * or white space, as counts in a scene); -1 if not. */
 static int parse_int(const char *s, long lo, long hi, int *out)
 {
     char *end;
+    if (*s < '0' || *s > '9')
+        return -1;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi)
+    if (errno || *end || v < lo || v > hi)
         return -1;
     *out = (int)v;
     return 0;
@@ -140,7 +148,8 @@ int cli_parse(int argc, char **argv, struct cli *c)
         const char *a = argv[i];
         if (!options_done && strcmp(a, "--") == 0) {
             options_done = true;
-        } else if (!options_done && a[0] == '-' && a[1] != '\0') {
+        } else if (!options_done && a[0] == '-' && a[1] != '\0' &&
+                   !(a[1] >= '0' && a[1] <= '9')) { /* "-1" is a (bad) size */
             if (parse_option(argc, argv, &i, c) != 0)
                 return -1;
         } else if (npos == 4) {
@@ -160,10 +169,10 @@ int cli_parse(int argc, char **argv, struct cli *c)
     c->outfile = positional[1];
     if (npos == 4) {
         if (parse_int(positional[2], 1, TP2_MAX_IMAGE_SIDE, &c->width) != 0)
-            return usage_error("X must be an integer from 1 to 32768, found '%s'",
+            return usage_error("X must be a positive integer up to 32768, found '%s'",
                                positional[2]);
         if (parse_int(positional[3], 1, TP2_MAX_IMAGE_SIDE, &c->height) != 0)
-            return usage_error("Y must be an integer from 1 to 32768, found '%s'",
+            return usage_error("Y must be a positive integer up to 32768, found '%s'",
                                positional[3]);
     }
     return 0;

@@ -22,9 +22,16 @@ static int is_delim(char c)
     return is_space(c) || c == '#' || c == '\0';
 }
 
+/* The UTF-8 byte-order mark that Windows editors put before the text. */
+static const char utf8_bom[3] = {'\xef', '\xbb', '\xbf'};
+
 int lexer_init(struct lexer *lx, const char *text, size_t len)
 {
     memset(lx, 0, sizeof *lx);
+    if (len >= sizeof utf8_bom && memcmp(text, utf8_bom, sizeof utf8_bom) == 0) {
+        text += sizeof utf8_bom; /* not part of the text: column 1 follows it */
+        len -= sizeof utf8_bom;
+    }
     lx->line = 1;
     lx->col = 1;
     if (len == SIZE_MAX) /* no room for the NUL */

@@ -34,7 +34,8 @@ struct lexer {
 };
 
 /* Copies len bytes of text (need not be NUL terminated; may hold NUL bytes)
- * and positions the lexer at its start. Returns 0, or -1 when out of memory
+ * and positions the lexer at its start; a UTF-8 byte-order mark there is
+ * skipped, so line 1, column 1 is the first byte after it. Returns 0, or -1 when out of memory
  * (then lexer_free is still safe). */
 int lexer_init(struct lexer *lx, const char *text, size_t len);
 

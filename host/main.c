@@ -2,10 +2,12 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli.h"
 #include "clock.h"
 #include "image_write.h"
+#include "lexer.h"
 #include "render.h"
 #include "scene.h"
 #include "scene_parse.h"
@@ -112,17 +114,26 @@ int main(int argc, char **argv)
     if (c.list_devices)
         return vkc_list_devices(stdout) == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
     if (image_format_of(c.outfile) == IMAGE_UNKNOWN) {
+        char *shown = lexer_escape(c.outfile);
         fprintf(stderr, "tp2: cannot tell the format of '%s': name it .ppm, "
-                        ".png or .pfm\n", c.outfile);
+                        ".png or .pfm\n", shown ? shown : "?");
+        free(shown);
         return EXIT_USAGE;
     }
     struct scene s;
-    char err[512];
-    double t0 = clock_seconds();
-    if (scene_parse_file(c.infile, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    size_t errsize = SCENE_ERROR_SIZE(strlen(c.infile));
+    char *err = malloc(errsize);
+    if (!err) {
+        fputs("tp2: out of memory\n", stderr);
         return EXIT_FAILURE;
     }
+    double t0 = clock_seconds();
+    int parsed = scene_parse_file(c.infile, &s, err, errsize);
+    if (parsed != 0)
+        fprintf(stderr, "%s\n", err);
+    free(err);
+    if (parsed != 0)
+        return EXIT_FAILURE;
     int rc = render_to_file(&c, &s, clock_seconds() - t0);
     scene_free(&s);
     return rc;

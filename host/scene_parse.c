@@ -24,7 +24,7 @@
 struct parser {
     struct lexer lx;
     struct token tok; /* the next token, not yet consumed */
-    const char *name;
+    const char *name; /* as messages show it: escaped (lexer_escape) */
     char *err;
     size_t errsize;
     struct scene s;
@@ -631,18 +631,22 @@ int scene_parse_text(const char *name, const char *text, size_t len,
     struct parser p;
     memset(&p, 0, sizeof p);
     memset(out, 0, sizeof *out);
-    p.name = name ? name : "<input>";
+    char *shown = lexer_escape(name ? name : "<input>");
+    p.name = shown ? shown : "?";
     p.err = err;
     p.errsize = errsize;
     if (err && errsize > 0)
         err[0] = '\0';
-    if (lexer_init(&p.lx, text, len)) {
+    if (!shown || lexer_init(&p.lx, text, len)) {
         lexer_free(&p.lx);
-        return fail_oom(&p);
+        fail_oom(&p);
+        free(shown);
+        return -1;
     }
     next(&p);
     int rc = parse_scene(&p);
     lexer_free(&p.lx);
+    free(shown);
     if (rc) {
         scene_free(&p.s);
         return -1;
@@ -694,9 +698,12 @@ int scene_parse_file(const char *path, struct scene *out, char *err,
     memset(out, 0, sizeof *out);
     errno = 0;
     if (read_all(path, &text, &len)) {
+        int saved = errno;
+        char *shown = lexer_escape(path);
         if (err && errsize > 0)
-            snprintf(err, errsize, "tp2: cannot read '%s': %s", path,
-                     strerror(errno));
+            snprintf(err, errsize, "tp2: cannot read '%s': %s", shown ? shown : "?",
+                     strerror(saved));
+        free(shown);
         return -1;
     }
     int rc = scene_parse_text(path, text, len, out, err, errsize);

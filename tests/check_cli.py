@@ -69,9 +69,22 @@ def case_usage_errors(c):
     c.usage_error([], "tp2: expected an input and an output file")
     c.usage_error([SCENE], "tp2: expected an input and an output file")
     c.usage_error([SCENE, c.out(), "40"], "tp2: expected both X and Y, or neither")
-    c.usage_error([SCENE, c.out(), "0", "30"], "tp2: X must be an integer from 1 to 32768, found '0'")
-    c.usage_error([SCENE, c.out(), "40", "3x"], "tp2: Y must be an integer from 1 to 32768, found '3x'")
-    c.usage_error([SCENE, c.out(), "40000", "30"], "tp2: X must be an integer")
+    c.usage_error([SCENE, c.out(), "0", "30"], "tp2: X must be a positive integer up to 32768, found '0'")
+    c.usage_error([SCENE, c.out(), "40", "3x"], "tp2: Y must be a positive integer up to 32768, found '3x'")
+    c.usage_error([SCENE, c.out(), "40000", "30"], "tp2: X must be a positive integer up to 32768, found '40000'")
+    # Signs and white space are refused as counts in a scene refuse them;
+    # a negative size is a size, not an option.
+    c.usage_error([SCENE, c.out(), "+5", "30"], "tp2: X must be a positive integer up to 32768, found '+5'")
+    c.usage_error([SCENE, c.out(), "5", " 30"], "tp2: Y must be a positive integer up to 32768, found ' 30'")
+    c.usage_error([SCENE, c.out(), "-1", "-1"], "tp2: X must be a positive integer up to 32768, found '-1'")
+    c.usage_error([SCENE, c.out(), "40", "-30"], "tp2: Y must be a positive integer up to 32768, found '-30'")
+    c.usage_error(["--spp", "+3", SCENE, c.out()], "tp2: --spp needs a number of samples from 1 to 4096, found '+3'")
+    c.usage_error(["--device", "-1", SCENE, c.out()], "tp2: --device needs a device index, found '-1'")
+    # Arguments are shown with bytes outside printable ASCII escaped.
+    c.usage_error(["--\x1b[2J", SCENE, c.out()], "tp2: unknown option '--\\x1b[2J'")
+    c.usage_error([SCENE, c.out("a\nb.jpg")], "tp2: cannot tell the format of '")
+    status, _, err = run(c.tp2, [SCENE, c.out("a\nb.jpg")])
+    c.expect("a\\x0ab.jpg'" in err and err.count("\n") == 1, f"{err!r}")
     c.usage_error([SCENE, c.out(), "4", "3", "2"], "tp2: unexpected argument '2'")
     c.usage_error(["--bogus", SCENE, c.out()], "tp2: unknown option '--bogus'")
     c.usage_error(["--device", SCENE, c.out()], "tp2: --device needs a device index")
@@ -86,6 +99,29 @@ def case_usage_errors(c):
 def case_input_missing(c):
     """A missing input file exits 1 naming it."""
     c.failure([os.path.join(c.tmp, "nope.txt"), c.out()], "tp2: cannot read '")
+
+
+def case_names_escaped(c):
+    """File names in messages show bytes outside printable ASCII as \\xNN,
+    whole (never cut): the scene's name in FILE:LINE:COL errors and in
+    'cannot read', the output's in 'cannot write'."""
+    name = "sc\x1b[31mene\n" + "n" * 200 + ".txt"
+    shown = "sc\\x1b[31mene\\x0a" + "n" * 200 + ".txt"
+    scene = os.path.join(c.tmp, name)
+    with open(scene, "w") as f:
+        f.write("0 0 x\n")
+    status, _, err = run(c.tp2, [scene, c.out()])
+    want = os.path.join(c.tmp, shown) + ":1:5: error: expected a number, found 'x'\n"
+    c.expect(status == 1 and err == want, f"exit {status}, stderr {err!r}")
+    os.unlink(scene)
+    status, _, err = run(c.tp2, [scene, c.out()])
+    want = f"tp2: cannot read '{os.path.join(c.tmp, shown)}': {os.strerror(2)}\n"
+    c.expect(status == 1 and err == want, f"exit {status}, stderr {err!r}")
+    out = os.path.join(c.tmp, "no\x07dir", "o\tut.ppm")
+    status, _, err = run(c.tp2, [SCENE, out, "8", "6"])
+    want = f"tp2: cannot write '{c.tmp}/no\\x07dir/o\\x09ut.ppm': {os.strerror(2)}\n"
+    c.expect(status == 1 and err == want, f"exit {status}, stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == [], f"left {os.listdir(c.tmp)}")
 
 
 def case_output_dir_missing(c):
