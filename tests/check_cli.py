@@ -344,6 +344,49 @@ def case_no_vulkan(c):
     c.failure([SCENE, c.out()], "tp2: no Vulkan device found; install", env)
 
 
+def all_lines_tp2(err):
+    return err != "" and all(line.startswith("tp2: ") for line in err.splitlines())
+
+
+def case_broken_driver_file(c):
+    """A malformed driver file (ICD manifest) is named as the likely cause,
+    with the variable that chose it, not 'r failed: VK_ERROR_OUT_OF_HOST_MEMORY'
+    (the loader's answer to JSON it cannot parse); with validation on, the
+    loader's own words come labelled as the loader's."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as drivers:
+        broken = os.path.join(drivers, "broken.json")
+        with open(broken, "w") as f:
+            f.write("{ this is not json")
+        for validate in ("0", "1"):
+            env = {"VK_ICD_FILENAMES": broken, "VK_DRIVER_FILES": broken, "TP2_VALIDATE": validate}
+            status, _, err = run(c.tp2, [SCENE, c.out(), "8", "6"], env)
+            c.expect(status == 1, f"validate={validate}: exit {status}")
+            c.expect(all_lines_tp2(err), f"validate={validate}: a line without tp2: {err!r}")
+            c.expect("cannot start Vulkan" in err and "driver file (an ICD .json manifest) is "
+                     "malformed" in err, f"validate={validate}: {err!r}")
+            c.expect(f"VK_DRIVER_FILES is set to '{broken}'" in err, f"validate={validate}: {err!r}")
+            c.expect(" r failed" not in err, f"validate={validate}: {err!r}")
+            if validate == "1":
+                c.expect("tp2: Vulkan loader: " in err, f"loader message unlabelled: {err!r}")
+            c.expect(os.listdir(c.tmp) == [], f"left {os.listdir(c.tmp)}")
+        status, out, err = run(c.tp2, ["--list-devices"], {"VK_ICD_FILENAMES": broken,
+                                                           "VK_DRIVER_FILES": broken})
+        c.expect(status == 1 and "malformed" in err and all_lines_tp2(err), f"{status} {err!r}")
+
+
+def case_driver_warning_has_context(c):
+    """A driver's own warning while Vulkan starts (Debian 12's Mesa: its
+    shader cache folder cannot be made) comes as a tp2 line that says who
+    speaks; the render still succeeds."""
+    env = {"XDG_CACHE_HOME": "/proc/no/such/cache", "HOME": "/proc/no/such/home"}
+    status, _, err = run(c.tp2, [SCENE, c.out(), "8", "6"], env)
+    c.expect(status == 0, f"exit {status}")
+    c.expect(all_lines_tp2(err), f"a line without tp2: {err!r}")
+    c.expect("tp2: Vulkan driver: " in err and "shader cache" in err, f"{err!r}")
+    c.expect(ppm_size(c.out()) == (8, 6), "no image")
+
+
 def case_list_devices(c):
     """--list-devices names lavapipe and marks a default."""
     status, out, _ = run(c.tp2, ["--list-devices"])
