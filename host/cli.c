@@ -2,6 +2,7 @@
 
 #include "lexer.h"
 #include "scene.h"
+#include "usage.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -10,33 +11,7 @@
 
 void cli_usage(FILE *out)
 {
-    fputs("usage: tp2 [options] infile.txt outfile.{ppm,png,pfm} [X Y]\n"
-          "\n"
-          "Ray traces a scene file (see README.TXT) into an image of X by Y\n"
-          "pixels (default: the scene's own size, else 400 300).\n"
-          "\n"
-          "options:\n"
-          "  --device N           render on device N of --list-devices\n"
-          "                       (default: discrete GPU, then integrated,\n"
-          "                       then virtual, then CPU)\n"
-          "  --list-devices       list the Vulkan devices and exit\n"
-          "  --precision P        float (default) or double: double-precision\n"
-          "                       geometry, the reference image\n"
-          "  --spp N              samples per pixel (overrides the scene's\n"
-          "                       'samples'; default 1, the pixel center)\n"
-          "  --stats              print phase times and rays traced to stderr\n"
-          "  --bailout W          do not trace reflected or transmitted rays\n"
-          "                       whose weight (product of kr, kt, fog) is\n"
-          "                       below W, like POV-Ray's adc_bailout (default\n"
-          "                       1/255; 0 with --precision double: the exact\n"
-          "                       model)\n"
-          "  --bvh-min N          trace spheres through the BVH when there are\n"
-          "                       at least N (default 16; a tuning knob)\n"
-          "  --quiet              no progress bar\n"
-          "  --validate           enable the Khronos validation layer; any\n"
-          "                       message fails the run (also TP2_VALIDATE=1)\n"
-          "  --help               show this text and exit\n",
-          out);
+    fputs(TP2_USAGE_TEXT, out);
 }
 
 /* Prints "tp2: " fmt (with arg escaped as lexer_escape does: arguments
@@ -92,6 +67,8 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
     const char *v;
     if (strcmp(opt, "--help") == 0 || strcmp(opt, "-h") == 0) {
         c->help = true;
+    } else if (strcmp(opt, "--version") == 0) {
+        c->version = true;
     } else if (strcmp(opt, "--list-devices") == 0) {
         c->list_devices = true;
     } else if (strcmp(opt, "--validate") == 0) {
@@ -160,7 +137,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
     }
     if (c->bailout < 0) /* the reference image prunes nothing */
         c->bailout = c->use_double ? 0.0 : TP2_DEFAULT_BAILOUT;
-    if (c->help || c->list_devices)
+    if (c->help || c->version || c->list_devices)
         return 0;
     if (npos != 2 && npos != 4)
         return usage_error("%s", npos < 2 ? "expected an input and an output file"

@@ -17,7 +17,7 @@ struct cli {
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */
-    bool help, list_devices;
+    bool help, version, list_devices;
 };
 
 /* The default --bailout, POV-Ray's default adc_bailout: a ray this faint
@@ -29,7 +29,7 @@ struct cli {
  * to stderr (a usage error: exit status 2). */
 int cli_parse(int argc, char **argv, struct cli *c);
 
-/* The --help text. */
+/* The --help text (usage.h). */
 void cli_usage(FILE *out);
 
 #endif

@@ -12,6 +12,7 @@
 #include "scene.h"
 #include "scene_parse.h"
 #include "tempfile.h"
+#include "tp2_version.h"
 #include "vk_context.h"
 
 enum { EXIT_USAGE = 2 };
@@ -109,6 +110,10 @@ int main(int argc, char **argv)
         return EXIT_USAGE;
     if (c.help) {
         cli_usage(stdout);
+        return EXIT_SUCCESS;
+    }
+    if (c.version) {
+        printf("tp2 %s (git %s)\n", TP2_VERSION, TP2_GIT_REVISION);
         return EXIT_SUCCESS;
     }
     if (c.list_devices)
