@@ -145,6 +145,29 @@ static const VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
     .pfnUserCallback = on_validation_message,
 };
 
+/* True if the validation layer offers instance extension name. */
+static bool layer_has_extension(const char *name)
+{
+    uint32_t n = 0;
+    if (vkEnumerateInstanceExtensionProperties(TP2_VALIDATION_LAYER, &n, NULL) != VK_SUCCESS)
+        return false;
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    if (!ext)
+        return false;
+    bool found = false;
+    if (vkEnumerateInstanceExtensionProperties(TP2_VALIDATION_LAYER, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; i++)
+            found = strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* Validation also checks synchronization (hazards between dispatches,
+ * and between the device's writes and the host's reads of a band). */
+static const VkValidationFeatureEnableEXT validation_features[] = {
+    VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
+};
+
 static int create_instance(VkInstance *instance, bool validate)
 {
     if (validate && !has_layer(TP2_VALIDATION_LAYER)) {
@@ -154,7 +177,15 @@ static int create_instance(VkInstance *instance, bool validate)
         return -1;
     }
     const char *layers[] = {TP2_VALIDATION_LAYER};
-    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
+                                VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    bool sync = validate && layer_has_extension(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .pNext = &messenger_info,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = validation_features,
+    };
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
         .pApplicationName = "tp2",
@@ -162,11 +193,11 @@ static int create_instance(VkInstance *instance, bool validate)
     };
     VkInstanceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pNext = validate ? &messenger_info : NULL,
+        .pNext = sync ? (const void *)&features : validate ? &messenger_info : NULL,
         .pApplicationInfo = &app,
         .enabledLayerCount = validate ? 1 : 0,
         .ppEnabledLayerNames = layers,
-        .enabledExtensionCount = validate ? 1 : 0,
+        .enabledExtensionCount = sync ? 2 : validate ? 1 : 0,
         .ppEnabledExtensionNames = extensions,
     };
     VkResult r = vkCreateInstance(&info, NULL, instance);
