@@ -24,7 +24,8 @@
 struct parser {
     struct lexer lx;
     struct token tok; /* the next token, not yet consumed */
-    const char *name; /* as messages show it: escaped (lexer_escape) */
+    const char *name;
+    const char *shown; /* name as messages show it (lexer_escape) */
     char *err;
     size_t errsize;
     struct scene s;
@@ -48,7 +49,7 @@ static int fail_at(struct parser *p, const struct token *at, const char *fmt,
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (p->err && p->errsize > 0)
-        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->name,
+        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->shown,
                  at->line, at->col, msg);
     return -1;
 }
@@ -57,7 +58,7 @@ static int fail_oom(struct parser *p)
 {
     if (p->err && p->errsize > 0)
         snprintf(p->err, p->errsize, "tp2: out of memory reading '%s'",
-                 p->name);
+                 p->shown);
     return -1;
 }
 
@@ -631,8 +632,9 @@ int scene_parse_text(const char *name, const char *text, size_t len,
     struct parser p;
     memset(&p, 0, sizeof p);
     memset(out, 0, sizeof *out);
-    char *shown = lexer_escape(name ? name : "<input>");
-    p.name = shown ? shown : "?";
+    p.name = name ? name : "<input>";
+    char *shown = lexer_escape(p.name);
+    p.shown = shown ? shown : "?";
     p.err = err;
     p.errsize = errsize;
     if (err && errsize > 0)
