@@ -1,6 +1,8 @@
 #include "cli.h"
 
+#include "lexer.h"
 #include "scene.h"
+#include "usage.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -9,52 +11,31 @@
 
 void cli_usage(FILE *out)
 {
-    fputs("usage: tp2 [options] infile.txt outfile.{ppm,png,pfm} [X Y]\n"
-          "\n"
-          "Ray traces a scene file (see README.TXT) into an image of X by Y\n"
-          "pixels (default: the scene's own size, else 400 300).\n"
-          "\n"
-          "options:\n"
-          "  --device N           render on device N of --list-devices\n"
-          "                       (default: discrete GPU, then integrated,\n"
-          "                       then virtual, then CPU)\n"
-          "  --list-devices       list the Vulkan devices and exit\n"
-          "  --dump-scene         print the scene as tp2 read it, as JSON, to\n"
-          "                       stdout and exit (no output file, no device)\n"
-          "  --precision P        float (default) or double: double-precision\n"
-          "                       geometry, the reference image\n"
-          "  --spp N              samples per pixel (overrides the scene's\n"
-          "                       'samples'; default 1, the pixel center)\n"
-          "  --stats              print phase times and rays traced to stderr\n"
-          "  --bailout W          do not trace reflected or transmitted rays\n"
-          "                       whose weight (product of kr, kt, fog) is\n"
-          "                       below W, like POV-Ray's adc_bailout (default\n"
-          "                       1/255; 0 with --precision double: the exact\n"
-          "                       model)\n"
-          "  --bvh-min N          trace spheres through the BVH when there are\n"
-          "                       at least N (default 16; a tuning knob)\n"
-          "  --quiet              no progress bar\n"
-          "  --validate           enable the Khronos validation layer; any\n"
-          "                       message fails the run (also TP2_VALIDATE=1)\n"
-          "  --help               show this text and exit\n",
-          out);
+    fputs(TP2_USAGE_TEXT, out);
 }
 
+/* Prints "tp2: " fmt (with arg escaped as lexer_escape does: arguments
+ * can hold any bytes) and a hint; returns -1. */
 static int usage_error(const char *fmt, const char *arg)
 {
+    char *shown = lexer_escape(arg);
     fputs("tp2: ", stderr);
-    fprintf(stderr, fmt, arg);
+    fprintf(stderr, fmt, shown ? shown : "?");
     fputs("\ntp2: see 'tp2 --help'\n", stderr);
+    free(shown);
     return -1;
 }
 
-/* A decimal integer in [lo, hi], the whole string; -1 if not. */
+/* A decimal integer in [lo, hi], the whole string, digits only (no sign
+ * or white space, as counts in a scene); -1 if not. */
 static int parse_int(const char *s, long lo, long hi, int *out)
 {
     char *end;
+    if (*s < '0' || *s > '9')
+        return -1;
     errno = 0;
     long v = strtol(s, &end, 10);
-    if (errno || end == s || *end || v < lo || v > hi)
+    if (errno || *end || v < lo || v > hi)
         return -1;
     *out = (int)v;
     return 0;
@@ -86,6 +67,8 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
     const char *v;
     if (strcmp(opt, "--help") == 0 || strcmp(opt, "-h") == 0) {
         c->help = true;
+    } else if (strcmp(opt, "--version") == 0) {
+        c->version = true;
     } else if (strcmp(opt, "--list-devices") == 0) {
         c->list_devices = true;
     } else if (strcmp(opt, "--dump-scene") == 0) {
@@ -144,7 +127,8 @@ int cli_parse(int argc, char **argv, struct cli *c)
         const char *a = argv[i];
         if (!options_done && strcmp(a, "--") == 0) {
             options_done = true;
-        } else if (!options_done && a[0] == '-' && a[1] != '\0') {
+        } else if (!options_done && a[0] == '-' && a[1] != '\0' &&
+                   !(a[1] >= '0' && a[1] <= '9')) { /* "-1" is a (bad) size */
             if (parse_option(argc, argv, &i, c) != 0)
                 return -1;
         } else if (npos == 4) {
@@ -155,7 +139,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
     }
     if (c->bailout < 0) /* the reference image prunes nothing */
         c->bailout = c->use_double ? 0.0 : TP2_DEFAULT_BAILOUT;
-    if (c->help || c->list_devices)
+    if (c->help || c->version || c->list_devices)
         return 0;
     if (c->dump_scene) {
         if (npos != 1)
@@ -170,10 +154,10 @@ int cli_parse(int argc, char **argv, struct cli *c)
     c->outfile = positional[1];
     if (npos == 4) {
         if (parse_int(positional[2], 1, TP2_MAX_IMAGE_SIDE, &c->width) != 0)
-            return usage_error("X must be an integer from 1 to 32768, found '%s'",
+            return usage_error("X must be a positive integer up to 32768, found '%s'",
                                positional[2]);
         if (parse_int(positional[3], 1, TP2_MAX_IMAGE_SIDE, &c->height) != 0)
-            return usage_error("Y must be an integer from 1 to 32768, found '%s'",
+            return usage_error("Y must be a positive integer up to 32768, found '%s'",
                                positional[3]);
     }
     return 0;

@@ -18,7 +18,7 @@ struct cli {
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */
     bool dump_scene;   /* --dump-scene: print the parsed scene as JSON */
-    bool help, list_devices;
+    bool help, version, list_devices;
 };
 
 /* The default --bailout, POV-Ray's default adc_bailout: a ray this faint
@@ -30,7 +30,7 @@ struct cli {
  * to stderr (a usage error: exit status 2). */
 int cli_parse(int argc, char **argv, struct cli *c);
 
-/* The --help text. */
+/* The --help text (usage.h). */
 void cli_usage(FILE *out);
 
 #endif

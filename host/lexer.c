@@ -22,9 +22,16 @@ static int is_delim(char c)
     return is_space(c) || c == '#' || c == '\0';
 }
 
+/* The UTF-8 byte-order mark that Windows editors put before the text. */
+static const char utf8_bom[3] = {'\xef', '\xbb', '\xbf'};
+
 int lexer_init(struct lexer *lx, const char *text, size_t len)
 {
     memset(lx, 0, sizeof *lx);
+    if (len >= sizeof utf8_bom && memcmp(text, utf8_bom, sizeof utf8_bom) == 0) {
+        text += sizeof utf8_bom; /* not part of the text: column 1 follows it */
+        len -= sizeof utf8_bom;
+    }
     lx->line = 1;
     lx->col = 1;
     if (len == SIZE_MAX) /* no room for the NUL */
@@ -209,6 +216,15 @@ static void append(char *out, size_t size, size_t *used, const char *s)
     out[*used] = '\0';
 }
 
+/* One byte as a message shows it: itself if printable ASCII, else \xNN. */
+static void escape_byte(unsigned char c, char piece[8])
+{
+    if (c >= 0x20 && c < 0x7f)
+        snprintf(piece, 8, "%c", c);
+    else
+        snprintf(piece, 8, "\\x%02x", c);
+}
+
 void lexer_quote(const char *s, size_t len, char *out, size_t size)
 {
     size_t used = 0;
@@ -218,12 +234,8 @@ void lexer_quote(const char *s, size_t len, char *out, size_t size)
     append(out, size, &used, "'");
     size_t shown = len < QUOTE_MAX ? len : QUOTE_MAX;
     for (size_t i = 0; i < shown; i++) {
-        unsigned char c = (unsigned char)s[i];
         char piece[8];
-        if (c >= 0x20 && c < 0x7f)
-            snprintf(piece, sizeof piece, "%c", c);
-        else
-            snprintf(piece, sizeof piece, "\\x%02x", c);
+        escape_byte((unsigned char)s[i], piece);
         append(out, size, &used, piece);
     }
     if (shown < len)
@@ -242,6 +254,24 @@ void keyword_list(const char *const *words, int n, char *out, size_t size)
         append(out, size, &used, words[i]);
         append(out, size, &used, "'");
     }
+}
+
+char *lexer_escape(const char *s)
+{
+    size_t n = strlen(s);
+    if (n > (SIZE_MAX - 1) / 4)
+        return NULL;
+    char *out = malloc(4 * n + 1); /* every byte may become \xNN */
+    if (!out)
+        return NULL;
+    size_t used = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < n; i++) {
+        char piece[8];
+        escape_byte((unsigned char)s[i], piece);
+        append(out, 4 * n + 1, &used, piece);
+    }
+    return out;
 }
 
 void token_describe(const struct token *tok, char *out, size_t size)

@@ -34,7 +34,8 @@ struct lexer {
 };
 
 /* Copies len bytes of text (need not be NUL terminated; may hold NUL bytes)
- * and positions the lexer at its start. Returns 0, or -1 when out of memory
+ * and positions the lexer at its start; a UTF-8 byte-order mark there is
+ * skipped, so line 1, column 1 is the first byte after it. Returns 0, or -1 when out of memory
  * (then lexer_free is still safe). */
 int lexer_init(struct lexer *lx, const char *text, size_t len);
 
@@ -64,6 +65,11 @@ void lexer_quote(const char *s, size_t len, char *out, size_t size);
 
 /* Writes "'a', 'b' or 'c'" for the n words, for "expected ..." messages. */
 void keyword_list(const char *const *words, int n, char *out, size_t size);
+
+/* A new string: s with every byte outside printable ASCII written as
+ * \xNN, as lexer_quote shows tokens, but never cut; for file names in
+ * messages. NULL when out of memory. */
+char *lexer_escape(const char *s);
 
 /* What a message says was found: "end of file" or the quoted token. */
 void token_describe(const struct token *tok, char *out, size_t size);

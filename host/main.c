@@ -2,14 +2,18 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli.h"
 #include "clock.h"
 #include "image_write.h"
+#include "lexer.h"
 #include "render.h"
 #include "scene.h"
 #include "scene_json.h"
 #include "scene_parse.h"
+#include "tempfile.h"
+#include "tp2_version.h"
 #include "vk_context.h"
 
 enum { EXIT_USAGE = 2 };
@@ -40,9 +44,12 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation)\n", st->device);
     fprintf(stderr, "tp2: upload     %8.3f s (packing, BVH, buffers)\n", st->upload);
     fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
-    fprintf(stderr, "tp2: render     %8.3f s\n", st->render);
-    fprintf(stderr, "tp2: readback   %8.3f s\n", st->readback);
-    fprintf(stderr, "tp2: write      %8.3f s\n", write);
+    fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
+                    "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);
+    fprintf(stderr, "tp2: readback   %8.3f s (copying finished bands from the device)\n",
+            st->readback);
+    fprintf(stderr, "tp2: write      %8.3f s (encoding and writing rows while the next "
+                    "band renders, then closing the file)\n", write);
     for (int i = 0; i < TP2_STAT_COUNT; i++) {
         fprintf(stderr, "tp2: rays %-11s %14llu\n", kinds[i], (unsigned long long)st->rays[i]);
         total += st->rays[i];
@@ -51,6 +58,15 @@ static void print_stats(const struct render_stats *st, double parse, double writ
             (unsigned long long)total, st->render > 0 ? total / st->render * 1e-6 : 0.0);
 }
 
+/* render_rows_fn: the rows go straight to the file. */
+static int write_rows(void *writer, const float *rgba, int first, int count)
+{
+    (void)first; /* they come in order */
+    return image_writer_rows(writer, rgba, count);
+}
+
+/* Opens the output first, so that an unwritable one is reported before
+ * the render, then streams the rows into it as bands finish. */
 static int render_to_file(const struct cli *c, const struct scene *s, double parse_time)
 {
     struct render_options opt = {
@@ -65,50 +81,65 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
     };
     struct render_stats stats;
     image_size(c, s, &opt.width, &opt.height);
-    float *rgba = malloc((size_t)opt.width * (size_t)opt.height * 4 * sizeof *rgba);
-    if (!rgba) {
-        fputs("tp2: out of memory for the image\n", stderr);
+    struct image_writer *w = image_writer_open(c->outfile, image_format_of(c->outfile),
+                                               opt.width, opt.height);
+    if (!w)
         return EXIT_FAILURE;
-    }
-    int rc = render_scene(s, &opt, rgba, &stats);
+    int rc = render_scene(s, &opt, write_rows, w, &stats);
     if (rc == 0 && vkc_validation_message_count() > 0) {
         fprintf(stderr, "tp2: %u validation message(s); no image written\n",
                 vkc_validation_message_count());
         rc = -1;
     }
+    if (rc != 0) {
+        image_writer_abort(w);
+        return EXIT_FAILURE;
+    }
     double t0 = clock_seconds();
-    if (rc == 0)
-        rc = image_write(c->outfile, image_format_of(c->outfile), opt.width,
-                         opt.height, rgba);
-    if (rc == 0 && c->stats)
-        print_stats(&stats, parse_time, clock_seconds() - t0);
-    free(rgba);
-    return rc == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    if (image_writer_finish(w) != 0)
+        return EXIT_FAILURE;
+    if (c->stats)
+        print_stats(&stats, parse_time, stats.write + clock_seconds() - t0);
+    return EXIT_SUCCESS;
 }
 
 int main(int argc, char **argv)
 {
     struct cli c;
+    tempfile_install_handlers(); /* before any thread: they inherit it */
     if (cli_parse(argc, argv, &c) != 0)
         return EXIT_USAGE;
     if (c.help) {
         cli_usage(stdout);
         return EXIT_SUCCESS;
     }
+    if (c.version) {
+        printf("tp2 %s (git %s)\n", TP2_VERSION, TP2_GIT_REVISION);
+        return EXIT_SUCCESS;
+    }
     if (c.list_devices)
         return vkc_list_devices(stdout) == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
     if (!c.dump_scene && image_format_of(c.outfile) == IMAGE_UNKNOWN) {
+        char *shown = lexer_escape(c.outfile);
         fprintf(stderr, "tp2: cannot tell the format of '%s': name it .ppm, "
-                        ".png or .pfm\n", c.outfile);
+                        ".png or .pfm\n", shown ? shown : "?");
+        free(shown);
         return EXIT_USAGE;
     }
     struct scene s;
-    char err[512];
-    double t0 = clock_seconds();
-    if (scene_parse_file(c.infile, &s, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+    size_t errsize = SCENE_ERROR_SIZE(strlen(c.infile));
+    char *err = malloc(errsize);
+    if (!err) {
+        fputs("tp2: out of memory\n", stderr);
         return EXIT_FAILURE;
     }
+    double t0 = clock_seconds();
+    int parsed = scene_parse_file(c.infile, &s, err, errsize);
+    if (parsed != 0)
+        fprintf(stderr, "%s\n", err);
+    free(err);
+    if (parsed != 0)
+        return EXIT_FAILURE;
     int rc;
     if (c.dump_scene)
         rc = scene_write_json(&s, stdout) == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

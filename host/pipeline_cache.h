@@ -3,7 +3,12 @@
  * The cache lives in $XDG_CACHE_HOME/tp2/ (else ~/.cache/tp2/), one file
  * per device. A missing, corrupt or foreign file is ignored (Vulkan is
  * only ever given data whose header matches this device), and failures to
- * save are silent: the cache only saves time, it never changes output. */
+ * save are silent: the cache only saves time, it never changes output.
+ * Nobody else can make tp2 write elsewhere or hang through it: the folder
+ * is used only if it is a real directory of tp2's user that not everyone
+ * may write to; only a regular file is read (no link followed, no FIFO
+ * waited on); the new file is written to a temporary file created
+ * exclusively (mode 0600) and renamed into place. */
 #ifndef TP2_PIPELINE_CACHE_H
 #define TP2_PIPELINE_CACHE_H
 

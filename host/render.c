@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "clock.h"
@@ -26,6 +27,15 @@
  * in one dispatch than in 40); eight still let the progress bar move. */
 #define TP2_CPU_TILES 8
 
+/* Largest band buffer in bytes: whole images no longer have to fit one
+ * storage buffer (lavapipe's limit, 128 MiB, stopped at about 3840 x 2160),
+ * and host memory stays bounded whatever the image size. 32 MiB is two
+ * million pixels, far more than a band needs to keep a device busy. */
+#define TP2_BAND_BYTES (32u << 20)
+
+/* Bytes of one pixel in the band buffer: an RGBA32F vec4. */
+#define TP2_PIXEL_BYTES (4 * sizeof(float))
+
 struct renderer {
     struct vkc vk;
     struct vk_buffer buffers[TP2_BINDING_COUNT];
@@ -39,6 +49,8 @@ struct renderer {
     VkCommandPool command_pool;
     VkCommandBuffer cmd;
     VkFence fence;
+    int band_rows;    /* rows per band; the band buffer holds this many */
+    float *host_band; /* the last finished band, copied out for the writer */
 };
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
@@ -53,18 +65,41 @@ struct tile_push {
     int32_t pad;
 };
 
+/* The band buffer's byte limit on this device: TP2_BAND_BYTES, or less
+ * where the device's storage-buffer range is smaller. The environment
+ * variable TP2_BAND_BYTES may lower it, so that tests can render small
+ * images in many bands (below one band of TP2_GROUP_Y rows, bands have
+ * TP2_GROUP_Y rows). */
+static VkDeviceSize band_bytes_max(const struct vkc *vk)
+{
+    VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
+    VkDeviceSize max = range < TP2_BAND_BYTES ? range : TP2_BAND_BYTES;
+    const char *env = getenv("TP2_BAND_BYTES");
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < max)
+        max = v;
+    return max;
+}
+
+/* The scene's buffers, filled; the band buffer (band_size bytes), its host
+ * copy and the stats buffer. */
 static int create_buffers(struct renderer *r, const struct packed_scene *p,
-                          VkDeviceSize image_size)
+                          VkDeviceSize band_size)
 {
     for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
         if (vk_buffer_create(&r->vk, p->size[i], false, &r->buffers[i]) != 0)
             return -1;
         memcpy(r->buffers[i].mapped, p->data[i], p->size[i]);
     }
-    if (vk_buffer_create(&r->vk, image_size, true, &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
+    if (vk_buffer_create(&r->vk, band_size, true, &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
         vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0)
         return -1;
     memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
+    if (!(r->host_band = malloc((size_t)band_size))) {
+        fputs("tp2: out of memory for a band of the image\n", stderr);
+        return -1;
+    }
     return 0;
 }
 
@@ -241,10 +276,11 @@ static int create_commands(struct renderer *r)
     return 0;
 }
 
-/* Records, submits and waits for one tile's dispatch. */
-static int run_tile(struct renderer *r, int x, int y, int w, int h, int sample)
+/* Records and submits one dispatch: one sample of the band of rows
+ * [y, y + rows), written to the band buffer from its first row on. */
+static int submit_band_sample(struct renderer *r, int width, int y, int rows, int sample)
 {
-    struct tile_push push = {{x, y}, sample, 0};
+    struct tile_push push = {{0, y}, sample, 0};
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
@@ -256,8 +292,8 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h, int sample)
                             r->pipeline_layout, 0, 1, &r->set, 0, NULL);
     vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                        0, sizeof push, &push);
-    vkCmdDispatch(r->cmd, (uint32_t)(w + TP2_GROUP_X - 1) / TP2_GROUP_X,
-                  (uint32_t)(h + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
+    vkCmdDispatch(r->cmd, (uint32_t)(width + TP2_GROUP_X - 1) / TP2_GROUP_X,
+                  (uint32_t)(rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
     /* Make the shader's writes visible to the next sample's dispatch, which
      * adds to them, and to the host's reads after the fence. */
     VkMemoryBarrier barrier = {
@@ -277,44 +313,98 @@ static int run_tile(struct renderer *r, int x, int y, int w, int h, int sample)
     };
     TP2_VK_TRY(vkResetFences(r->vk.device, 1, &r->fence));
     TP2_VK_TRY(vkQueueSubmit(r->vk.queue, 1, &submit, r->fence));
+    return 0;
+}
+
+static int wait_band_sample(struct renderer *r)
+{
     TP2_VK_TRY(vkWaitForFences(r->vk.device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     return 0;
 }
 
-/* Rows per tile: tiles are bands of whole rows, a multiple of the
- * workgroup's height, each about TP2_TILE_SAMPLES pixels on a GPU and a
- * TP2_CPU_TILES-th of all the samples on a CPU (so the whole image once
- * there are that many samples per pixel). */
-static int tile_rows(const struct vkc *vk, int width, int height, int samples)
+/* Rows per band: a multiple of the workgroup's height (so a band's last
+ * workgroups never write past it), about TP2_TILE_SAMPLES pixels on a GPU
+ * and a TP2_CPU_TILES-th of all the samples on a CPU (so the whole image
+ * once there are that many samples per pixel), but never more than
+ * TP2_BAND_BYTES: that bounds memory whatever the image size. */
+static int band_rows(const struct vkc *vk, int width, int height, int samples)
 {
     double budget = TP2_TILE_SAMPLES;
     if (vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
         budget = fmax(budget, (double)width * height * samples / TP2_CPU_TILES);
     int rows = (int)ceil(budget / width);
     rows += (TP2_GROUP_Y - rows % TP2_GROUP_Y) % TP2_GROUP_Y;
+    int fit = (int)(band_bytes_max(vk) / ((VkDeviceSize)width * TP2_PIXEL_BYTES));
+    fit -= fit % TP2_GROUP_Y;
+    if (fit < TP2_GROUP_Y) /* only where TP2_BAND_BYTES asks for less */
+        fit = TP2_GROUP_Y;
+    if (rows > fit)
+        rows = fit;
     return rows < height ? rows : height;
 }
 
-/* Renders every sample of every pixel: one dispatch per band and sample,
- * each adding its sample's share to the pixels. One sample per dispatch
- * also keeps each invocation's work bounded: lavapipe ends a shader
- * invocation's loops after 65535 iterations in all (gallivm's
+/* The band the host holds (copied out of device memory), and how many of
+ * its rows the writer has had. */
+struct host_band {
+    int y, rows, done;
+};
+
+/* Hands rows [done, upto) of the host's band to on_rows; 0 or -1. */
+static int hand_on(struct renderer *r, struct host_band *b, int upto, int width,
+                   render_rows_fn on_rows, void *user, double *time)
+{
+    if (upto <= b->done)
+        return 0;
+    double t0 = clock_seconds();
+    int rc = on_rows(user, r->host_band + (size_t)b->done * width * 4, b->y + b->done,
+                     upto - b->done);
+    *time += clock_seconds() - t0;
+    b->done = upto;
+    return rc;
+}
+
+/* Renders every sample of every pixel, band by band, one dispatch per band
+ * and sample, each adding its sample's share to the pixels. One sample per
+ * dispatch also keeps each invocation's work bounded: lavapipe ends a
+ * shader invocation's loops after 65535 iterations in all (gallivm's
  * LP_MAX_TGSI_LOOP_ITERATIONS), which 64 samples of a glass scene in one
- * invocation overran, silently. */
-static int run_tiles(struct renderer *r, int width, int height, int samples,
-                     bool show_progress)
+ * invocation overran, silently. While the device renders a band, the host
+ * writes the previous one, a share after each submission. */
+static int run_bands(struct renderer *r, int width, int height, int samples,
+                     bool show_progress, render_rows_fn on_rows, void *user,
+                     struct render_stats *st)
 {
     struct progress bar;
     progress_start(&bar, show_progress);
-    int rows = tile_rows(&r->vk, width, height, samples);
+    int rows = r->band_rows;
     int bands = (height + rows - 1) / rows;
+    st->bands = bands;
+    st->band_rows = rows;
+    struct host_band held = {0, 0, 0};
+    double t0 = clock_seconds();
     int rc = 0;
-    for (int s = 0; s < samples && rc == 0; s++)
-        for (int band = 0; band < bands && rc == 0; band++) {
-            int y = band * rows;
-            rc = run_tile(r, 0, y, width, height - y < rows ? height - y : rows, s);
-            progress_update(&bar, (double)(s * bands + band + 1) / ((double)samples * bands));
+    for (int band = 0; band < bands && rc == 0; band++) {
+        int y = band * rows, n = height - y < rows ? height - y : rows;
+        for (int s = 0; s < samples && rc == 0; s++) {
+            rc = submit_band_sample(r, width, y, n, s);
+            if (rc == 0)
+                rc = hand_on(r, &held, (int)((int64_t)held.rows * (s + 1) / samples),
+                             width, on_rows, user, &st->write);
+            if (rc == 0)
+                rc = wait_band_sample(r);
+            progress_update(&bar, (double)(band * samples + s + 1) / ((double)samples * bands));
         }
+        if (rc == 0) { /* the device may reuse its buffer once this is copied */
+            double t1 = clock_seconds();
+            memcpy(r->host_band, r->buffers[TP2_BINDING_IMAGE].mapped,
+                   (size_t)n * width * TP2_PIXEL_BYTES);
+            st->readback += clock_seconds() - t1;
+            held = (struct host_band){y, n, 0};
+        }
+    }
+    if (rc == 0)
+        rc = hand_on(r, &held, held.rows, width, on_rows, user, &st->write);
+    st->render = clock_seconds() - t0 - st->readback - st->write;
     progress_finish(&bar);
     return rc;
 }
@@ -336,15 +426,20 @@ static void renderer_destroy(struct renderer *r)
             vk_buffer_destroy(&r->vk, &r->buffers[i]);
     }
     vkc_destroy(&r->vk);
+    free(r->host_band);
 }
 
-/* The output buffer must fit in one storage-buffer binding. */
-static int check_image_size(const struct vkc *vk, VkDeviceSize bytes)
+/* Even the smallest band (TP2_GROUP_Y rows) must fit the band limit; with
+ * Vulkan's least maxStorageBufferRange (128 MiB) every width up to 32768
+ * does. */
+static int check_band_fits(const struct vkc *vk, int width)
 {
-    if (bytes > vk->props.limits.maxStorageBufferRange) {
-        fprintf(stderr, "tp2: image too large for device '%s' (%llu bytes, "
-                        "its limit is %u)\n",
-                vk->props.deviceName, (unsigned long long)bytes,
+    VkDeviceSize bytes = (VkDeviceSize)width * TP2_GROUP_Y * TP2_PIXEL_BYTES;
+    VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
+    if (bytes > (range < TP2_BAND_BYTES ? range : TP2_BAND_BYTES)) {
+        fprintf(stderr, "tp2: image too wide for device '%s' (%d rows of %d "
+                        "pixels need %llu bytes, its storage-buffer limit is %u)\n",
+                vk->props.deviceName, TP2_GROUP_Y, width, (unsigned long long)bytes,
                 vk->props.limits.maxStorageBufferRange);
         return -1;
     }
@@ -352,7 +447,7 @@ static int check_image_size(const struct vkc *vk, VkDeviceSize bytes)
 }
 
 int render_scene(const struct scene *s, const struct render_options *opt,
-                 float *rgba, struct render_stats *stats)
+                 render_rows_fn on_rows, void *user, struct render_stats *stats)
 {
     struct renderer r = {0};
     struct packed_scene packed = {0};
@@ -369,11 +464,10 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .bvh_min = opt->bvh_min,
         .bailout = opt->bailout,
     };
-    VkDeviceSize image_size = (VkDeviceSize)opt->width * opt->height * 4 * sizeof(float);
     int rc = -1;
     memset(stats, 0, sizeof *stats);
     double t0 = clock_seconds();
-    if (vkc_create(&r.vk, &vk_opt) != 0 || check_image_size(&r.vk, image_size) != 0)
+    if (vkc_create(&r.vk, &vk_opt) != 0 || check_band_fits(&r.vk, opt->width) != 0)
         goto done;
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
     double t1 = clock_seconds();
@@ -381,24 +475,23 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         fputs("tp2: out of memory\n", stderr);
         goto done;
     }
-    if (create_buffers(&r, &packed, image_size) != 0)
+    r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
+    VkDeviceSize band_size = (VkDeviceSize)r.band_rows * opt->width * TP2_PIXEL_BYTES;
+    if (create_buffers(&r, &packed, band_size) != 0)
         goto done;
     double t2 = clock_seconds();
     if (create_pipeline(&r, opt->use_double, &packed.features, opt->count_rays) != 0 ||
         create_descriptors(&r) != 0 || create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
-    if (run_tiles(&r, opt->width, opt->height, packed.features.samples, opt->progress) != 0)
+    if (run_bands(&r, opt->width, opt->height, packed.features.samples, opt->progress,
+                  on_rows, user, stats) != 0)
         goto done;
-    double t4 = clock_seconds();
-    memcpy(rgba, r.buffers[TP2_BINDING_IMAGE].mapped, (size_t)image_size);
     read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = t1 - t0;
     stats->upload = t2 - t1;
     stats->pipeline = t3 - t2;
-    stats->render = t4 - t3;
-    stats->readback = clock_seconds() - t4;
     rc = 0;
 done:
     renderer_destroy(&r);

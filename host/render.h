@@ -20,17 +20,29 @@ struct render_options {
     bool progress;     /* draw a progress bar on stderr after a second */
 };
 
-/* Wall times of the phases, in seconds, and rays traced by kind. */
+/* Wall times of the phases, in seconds, and rays traced by kind. Bands
+ * are rendered, read back and written in turn, the rows of one band being
+ * written while the next renders: render is the band loop's time less
+ * readback (copying finished bands out of device memory) and write (the
+ * time spent in the row callback). */
 struct render_stats {
-    double device, pipeline, upload, render, readback;
+    double device, pipeline, upload, render, readback, write;
+    int bands, band_rows; /* bands rendered, rows in each (the last: fewer) */
     uint64_t rays[TP2_STAT_COUNT]; /* TP2_STAT_*; zero unless count_rays */
     char device_name[256];
 };
 
-/* Traces s into rgba, width * height * 4 linear floats, rows top to
- * bottom, and fills stats. Returns 0, or -1 after printing one
- * "tp2: ..." message. */
+/* Receives the image as it is rendered: rows [first, first + count), each
+ * width * 4 linear floats (rgb, then a junk alpha), rows top to bottom,
+ * every row once and in order. Returns 0, or -1 to stop the render (after
+ * printing its own message). */
+typedef int (*render_rows_fn)(void *user, const float *rgba, int first, int count);
+
+/* Traces s in bands of whole rows, handing each band's rows to on_rows,
+ * and fills stats. Memory stays bounded whatever the image size: one band
+ * on the device and one copy of it on the host. Returns 0, or -1 after
+ * printing one "tp2: ..." message (or after on_rows failed). */
 int render_scene(const struct scene *s, const struct render_options *opt,
-                 float *rgba, struct render_stats *stats);
+                 render_rows_fn on_rows, void *user, struct render_stats *stats);
 
 #endif

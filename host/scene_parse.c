@@ -29,7 +29,8 @@ struct scene_reader {
     struct lexer lx;
     struct token tok; /* the next token, not yet consumed */
     const char *name;
-    char *dir; /* the scene file's folder, for the files it names */
+    char *dir;         /* the scene file's folder, for the files it names */
+    const char *shown; /* name as messages show it (lexer_escape) */
     char *err;
     size_t errsize;
     struct scene s;
@@ -53,7 +54,7 @@ int read_fail(struct scene_reader *p, const struct token *at, const char *fmt,
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (p->err && p->errsize > 0)
-        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->name,
+        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->shown,
                  at->line, at->col, msg);
     return -1;
 }
@@ -69,7 +70,7 @@ static int fail_oom(struct scene_reader *p)
 {
     if (p->err && p->errsize > 0)
         snprintf(p->err, p->errsize, "tp2: out of memory reading '%s'",
-                 p->name);
+                 p->shown);
     return -1;
 }
 
@@ -662,20 +663,25 @@ int scene_parse_text(const char *name, const char *text, size_t len,
     memset(&p, 0, sizeof p);
     memset(out, 0, sizeof *out);
     p.name = name ? name : "<input>";
+    char *shown = lexer_escape(p.name);
+    p.shown = shown ? shown : "?";
     p.err = err;
     p.errsize = errsize;
     if (err && errsize > 0)
         err[0] = '\0';
     p.dir = folder_of(p.name);
-    if (!p.dir || lexer_init(&p.lx, text, len)) {
+    if (!shown || !p.dir || lexer_init(&p.lx, text, len)) {
         lexer_free(&p.lx);
+        fail_oom(&p);
         free(p.dir);
-        return fail_oom(&p);
+        free(shown);
+        return -1;
     }
     next(&p);
     int rc = parse_scene(&p);
     lexer_free(&p.lx);
     free(p.dir);
+    free(shown);
     if (rc) {
         scene_free(&p.s);
         return -1;
@@ -727,9 +733,12 @@ int scene_parse_file(const char *path, struct scene *out, char *err,
     memset(out, 0, sizeof *out);
     errno = 0;
     if (read_all(path, &text, &len)) {
+        int saved = errno;
+        char *shown = lexer_escape(path);
         if (err && errsize > 0)
-            snprintf(err, errsize, "tp2: cannot read '%s': %s", path,
-                     strerror(errno));
+            snprintf(err, errsize, "tp2: cannot read '%s': %s", shown ? shown : "?",
+                     strerror(saved));
+        free(shown);
         return -1;
     }
     int rc = scene_parse_text(path, text, len, out, err, errsize);

@@ -9,9 +9,14 @@
 
 #include "scene.h"
 
+/* Room in err for every message about a file whose name is name_len bytes
+ * long: the name, escaped (up to 4 bytes each), and the message. */
+#define SCENE_ERROR_SIZE(name_len) (4 * (size_t)(name_len) + 640)
+
 /* Parses len bytes of text (need not be NUL terminated) named name in
- * messages (NULL means "<input>"). Both variants are accepted: the header
- * variant is recognised by a first token that is not a number.
+ * messages (NULL means "<input>"; bytes outside printable ASCII shown as
+ * \xNN, never cut). Both variants are accepted: the header variant is
+ * recognised by a first token that is not a number.
  *
  * Returns 0 and fills *out (which the caller frees with scene_free), or -1
  * with *out zeroed and one line, without a newline, written to err (cut to

@@ -1,8 +1,11 @@
+#define _POSIX_C_SOURCE 200809L
 #include "vk_context.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "lexer.h"
 #include "vk_check.h"
 
 #define TP2_VALIDATION_LAYER "VK_LAYER_KHRONOS_validation"
@@ -12,6 +15,33 @@ static const char no_vulkan_hint[] =
     "apt-get install mesa-vulkan-drivers libvulkan1 for the lavapipe CPU "
     "driver, or your GPU vendor's driver)\n";
 
+/* Environment variables that replace the installed drivers (the loader
+ * reads VK_DRIVER_FILES first, then the older VK_ICD_FILENAMES). */
+static const char *const driver_variables[] = {"VK_DRIVER_FILES", "VK_ICD_FILENAMES"};
+
+/* Says where the drivers came from when the user chose them: a wrong path
+ * there explains most driver failures. */
+static void print_driver_source(void)
+{
+    for (size_t i = 0; i < sizeof driver_variables / sizeof *driver_variables; i++) {
+        const char *v = getenv(driver_variables[i]);
+        if (!v || !*v)
+            continue;
+        char *shown = lexer_escape(v);
+        fprintf(stderr, "tp2: %s is set to '%s': only the driver files it names "
+                        "are tried; check them, or unset it to use the installed "
+                        "drivers\n", driver_variables[i], shown ? shown : "?");
+        free(shown);
+        return;
+    }
+}
+
+static void print_no_vulkan(void)
+{
+    fputs(no_vulkan_hint, stderr);
+    print_driver_source();
+}
+
 static unsigned validation_messages;
 
 unsigned vkc_validation_message_count(void)
@@ -19,17 +49,74 @@ unsigned vkc_validation_message_count(void)
     return validation_messages;
 }
 
+/* Counts every message (any fails a --validate run) and says who speaks:
+ * the loader's messages during vkCreateInstance (a driver file it could
+ * not read, say) are "general", the layer's findings "validation". */
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity,
     VkDebugUtilsMessageTypeFlagsEXT type,
     const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
 {
     (void)severity;
-    (void)type;
     (void)user;
     validation_messages++;
-    fprintf(stderr, "tp2: validation: %s\n", data->pMessage);
+    const char *who = type & VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT ? "validation"
+                      : type & VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT
+                          ? "validation (performance)"
+                          : "Vulkan loader";
+    fprintf(stderr, "tp2: %s: %s\n", who, data->pMessage);
     return VK_FALSE;
+}
+
+/* Drivers print warnings straight to stderr (Mesa: "Failed to create ...
+ * for shader cache ...---disabling."), which reads as if tp2 said it
+ * without context. While Vulkan starts, stderr goes to a temporary file;
+ * afterwards each line is replayed, prefixed "tp2: Vulkan driver: " unless
+ * tp2 wrote it. */
+struct stderr_capture {
+    int saved; /* the real stderr, or -1 when not capturing */
+    FILE *file;
+};
+
+static void capture_begin(struct stderr_capture *cap)
+{
+    cap->saved = -1;
+    cap->file = tmpfile();
+    if (!cap->file)
+        return;
+    fflush(stderr);
+    cap->saved = dup(STDERR_FILENO);
+    if (cap->saved >= 0 && dup2(fileno(cap->file), STDERR_FILENO) < 0) {
+        close(cap->saved);
+        cap->saved = -1;
+    }
+    if (cap->saved < 0) {
+        fclose(cap->file);
+        cap->file = NULL;
+    }
+}
+
+static void capture_end(struct stderr_capture *cap)
+{
+    if (cap->saved < 0)
+        return;
+    fflush(stderr);
+    dup2(cap->saved, STDERR_FILENO);
+    close(cap->saved);
+    cap->saved = -1;
+    rewind(cap->file);
+    char line[1024];
+    bool line_start = true;
+    while (fgets(line, sizeof line, cap->file)) {
+        if (line_start && strncmp(line, "tp2: ", 5) != 0)
+            fputs("tp2: Vulkan driver: ", stderr);
+        fputs(line, stderr);
+        line_start = strchr(line, '\n') != NULL;
+    }
+    if (!line_start) /* Mesa ends some warnings without a newline */
+        fputc('\n', stderr);
+    fclose(cap->file);
+    cap->file = NULL;
 }
 
 static bool has_layer(const char *name)
@@ -58,6 +145,29 @@ static const VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
     .pfnUserCallback = on_validation_message,
 };
 
+/* True if the validation layer offers instance extension name. */
+static bool layer_has_extension(const char *name)
+{
+    uint32_t n = 0;
+    if (vkEnumerateInstanceExtensionProperties(TP2_VALIDATION_LAYER, &n, NULL) != VK_SUCCESS)
+        return false;
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    if (!ext)
+        return false;
+    bool found = false;
+    if (vkEnumerateInstanceExtensionProperties(TP2_VALIDATION_LAYER, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; i++)
+            found = strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* Validation also checks synchronization (hazards between dispatches,
+ * and between the device's writes and the host's reads of a band). */
+static const VkValidationFeatureEnableEXT validation_features[] = {
+    VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
+};
+
 static int create_instance(VkInstance *instance, bool validate)
 {
     if (validate && !has_layer(TP2_VALIDATION_LAYER)) {
@@ -67,7 +177,15 @@ static int create_instance(VkInstance *instance, bool validate)
         return -1;
     }
     const char *layers[] = {TP2_VALIDATION_LAYER};
-    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
+    const char *extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME,
+                                VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME};
+    bool sync = validate && layer_has_extension(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .pNext = &messenger_info,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = validation_features,
+    };
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
         .pApplicationName = "tp2",
@@ -75,19 +193,29 @@ static int create_instance(VkInstance *instance, bool validate)
     };
     VkInstanceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pNext = validate ? &messenger_info : NULL,
+        .pNext = sync ? (const void *)&features : validate ? &messenger_info : NULL,
         .pApplicationInfo = &app,
         .enabledLayerCount = validate ? 1 : 0,
         .ppEnabledLayerNames = layers,
-        .enabledExtensionCount = validate ? 1 : 0,
+        .enabledExtensionCount = sync ? 2 : validate ? 1 : 0,
         .ppEnabledExtensionNames = extensions,
     };
     VkResult r = vkCreateInstance(&info, NULL, instance);
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER) {
-        fputs(no_vulkan_hint, stderr);
+        print_no_vulkan();
         return -1;
     }
-    TP2_VK_TRY(r);
+    if (r != VK_SUCCESS) {
+        /* The loader (1.3.239) answers a driver file it cannot parse with
+         * VK_ERROR_OUT_OF_HOST_MEMORY, as if memory were short. */
+        fprintf(stderr, "tp2: cannot start Vulkan (vkCreateInstance: %s): most "
+                        "likely a Vulkan driver file (an ICD .json manifest) is "
+                        "malformed or unreadable; the installed ones are in "
+                        "/usr/share/vulkan/icd.d and /etc/vulkan/icd.d\n",
+                vk_result_name(r));
+        print_driver_source();
+        return -1;
+    }
     return 0;
 }
 
@@ -120,9 +248,15 @@ static int get_devices(VkInstance instance, VkPhysicalDevice **out,
 {
     *out = NULL;
     *count = 0;
-    TP2_VK_TRY(vkEnumeratePhysicalDevices(instance, count, NULL));
+    VkResult r = vkEnumeratePhysicalDevices(instance, count, NULL);
+    if (r != VK_SUCCESS) {
+        fprintf(stderr, "tp2: a Vulkan driver failed to start "
+                        "(vkEnumeratePhysicalDevices: %s)\n", vk_result_name(r));
+        print_driver_source();
+        return -1;
+    }
     if (*count == 0) {
-        fputs(no_vulkan_hint, stderr);
+        print_no_vulkan();
         return -1;
     }
     *out = calloc(*count, sizeof **out);
@@ -130,7 +264,7 @@ static int get_devices(VkInstance instance, VkPhysicalDevice **out,
         fputs("tp2: out of memory\n", stderr);
         return -1;
     }
-    VkResult r = vkEnumeratePhysicalDevices(instance, count, *out);
+    r = vkEnumeratePhysicalDevices(instance, count, *out);
     if (r != VK_SUCCESS && r != VK_INCOMPLETE) {
         vk_report("vkEnumeratePhysicalDevices", r, __FILE__, __LINE__);
         free(*out);
@@ -160,8 +294,12 @@ int vkc_list_devices(FILE *out)
     VkPhysicalDevice *devices = NULL;
     uint32_t count = 0;
     int rc = -1;
-    if (create_instance(&instance, false) == 0 &&
-        get_devices(instance, &devices, &count) == 0) {
+    struct stderr_capture cap;
+    capture_begin(&cap);
+    bool ok = create_instance(&instance, false) == 0 &&
+              get_devices(instance, &devices, &count) == 0;
+    capture_end(&cap);
+    if (ok) {
         int best = best_device(devices, count);
         for (uint32_t i = 0; i < count; i++) {
             VkPhysicalDeviceProperties p;
@@ -267,9 +405,8 @@ static int create_messenger(struct vkc *c)
     return 0;
 }
 
-int vkc_create(struct vkc *c, const struct vkc_options *opt)
+static int create_all(struct vkc *c, const struct vkc_options *opt)
 {
-    memset(c, 0, sizeof *c);
     if (create_instance(&c->instance, opt->validate) != 0)
         return -1;
     if (opt->validate && create_messenger(c) != 0)
@@ -277,6 +414,16 @@ int vkc_create(struct vkc *c, const struct vkc_options *opt)
     if (pick_device(c, opt) != 0)
         return -1;
     return create_device(c, opt);
+}
+
+int vkc_create(struct vkc *c, const struct vkc_options *opt)
+{
+    memset(c, 0, sizeof *c);
+    struct stderr_capture cap;
+    capture_begin(&cap);
+    int rc = create_all(c, opt);
+    capture_end(&cap);
+    return rc;
 }
 
 void vkc_destroy(struct vkc *c)

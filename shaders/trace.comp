@@ -236,7 +236,8 @@ void main()
     rvec3 origin, dir;
     camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
     vec3 share = trace(origin, dir, random2(pixel, uint(2 * s + 2))) / float(SAMPLES);
-    int index = pixel.y * width + pixel.x;
+    // pixels[] holds one band of whole rows, from row tile_origin.y on.
+    int index = int(gl_GlobalInvocationID.y) * width + pixel.x;
     pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
     ray_tally[TP2_STAT_CAMERA] = 1u;
 

@@ -298,6 +298,117 @@ def case_pipeline_cache(c):
              "an unwritable cache folder changed the image")
 
 
+def cache_file(c, env):
+    """Renders once with env's cache folder; returns (image, the cache file's path)."""
+    first = c.image(effects_scene(), (16, 12), name="first", env=env)
+    files = glob.glob(os.path.join(env["XDG_CACHE_HOME"], "tp2", "pipelines-*.bin"))
+    c.require(len(files) == 1, f"cache files: {files}")
+    return first, files[0]
+
+
+def cache_leftovers(folder):
+    return [n for n in os.listdir(folder) if not n.startswith("pipelines-")]
+
+
+def case_cache_planted_link(c):
+    """Links planted at the cache file's path and at the temporary name tp2
+    once used (PATH.PID, planted by the child itself before exec, so the
+    PID is right) are replaced or ignored, never followed: the file they
+    point to stays as it was."""
+    import subprocess
+    env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
+    first, path = cache_file(c, env)
+    victim = os.path.join(c.tmp, "victim")
+    with open(victim, "wb") as f:
+        f.write(b"victim")
+    os.unlink(path)
+    os.symlink(victim, path)
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    out = os.path.join(c.tmp, "again.pfm")
+    r = subprocess.run([c.tp2, scene, out, "16", "12"], capture_output=True, timeout=600,
+                       env=dict(os.environ, **env),
+                       preexec_fn=lambda: os.symlink(victim, f"{path}.{os.getpid()}"))
+    c.require(r.returncode == 0 and r.stderr == b"", f"exit {r.returncode}, {r.stderr!r}")
+    c.expect(read_pfm(out)[2] == first, "image")
+    with open(victim, "rb") as f:
+        c.expect(f.read() == b"victim", "a link's target was written")
+    c.expect(not os.path.islink(path) and os.path.isfile(path), "the link is still there")
+    for name in cache_leftovers(os.path.dirname(path)):
+        c.expect(os.path.islink(os.path.join(os.path.dirname(path), name)) and
+                 name.startswith(os.path.basename(path) + "."), f"left {name}")
+
+
+def case_cache_folder_not_ours(c):
+    """A cache folder that is a link, or that everyone may write to, is not
+    used: nothing is read or written there."""
+    elsewhere = os.path.join(c.tmp, "elsewhere")
+    os.mkdir(elsewhere)
+    env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
+    first, path = cache_file(c, env)
+    name = os.path.basename(path)
+    with open(os.path.join(elsewhere, name), "wb") as f:
+        f.write(b"victim")
+    linked = os.path.join(c.tmp, "linked")
+    os.mkdir(linked)
+    os.symlink(elsewhere, os.path.join(linked, "tp2"))
+    image = c.image(effects_scene(), (16, 12), name="linked", env={"XDG_CACHE_HOME": linked})
+    c.expect(image == first, "image through a linked folder")
+    with open(os.path.join(elsewhere, name), "rb") as f:
+        c.expect(f.read() == b"victim", "a file in the linked folder was written")
+    c.expect(os.listdir(elsewhere) == [name], f"linked folder holds {os.listdir(elsewhere)}")
+    os.unlink(path)
+    os.chmod(os.path.dirname(path), 0o777)
+    c.expect(c.image(effects_scene(), (16, 12), name="open", env=env) == first, "image")
+    c.expect(os.listdir(os.path.dirname(path)) == [], "a world-writable folder was used")
+
+
+def case_cache_fifo(c):
+    """A FIFO at the cache file's path is skipped without blocking (run's
+    time limit only catches a hang), and the cache is saved over it."""
+    env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
+    first, path = cache_file(c, env)
+    os.unlink(path)
+    os.mkfifo(path)
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    out = os.path.join(c.tmp, "fifo.pfm")
+    status, _, err = run(c.tp2, [scene, out, "16", "12"], env, timeout=120)
+    c.require(status == 0 and err == "", f"exit {status}, {err!r}")
+    c.expect(read_pfm(out)[2] == first, "image")
+    c.expect(os.path.isfile(path), "no cache file saved over the FIFO")
+    c.expect(cache_leftovers(os.path.dirname(path)) == [], f"left {os.listdir(os.path.dirname(path))}")
+
+
+def case_cache_directory(c):
+    """A directory at the cache file's path is neither read nor replaced,
+    and no temporary file is left beside it."""
+    env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
+    first, path = cache_file(c, env)
+    os.unlink(path)
+    os.mkdir(path)
+    c.expect(c.image(effects_scene(), (16, 12), name="again", env=env) == first, "image")
+    c.expect(os.path.isdir(path) and os.listdir(path) == [], "the directory changed")
+    c.expect(cache_leftovers(os.path.dirname(path)) == [], f"left {os.listdir(os.path.dirname(path))}")
+
+
+def case_bands_agree(c):
+    """Bands of 8 rows (TP2_BAND_BYTES=1: 27 bands) give the very bytes of
+    the default bands (two of 200 rows here), in every format, with several
+    samples per pixel: rows land where they belong and every band gets all
+    its samples."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    for ext in ("pfm", "png", "ppm"):
+        outs = []
+        for name, env in (("one", {}), ("many", {"TP2_BAND_BYTES": "1"})):
+            out = os.path.join(c.tmp, f"{name}.{ext}")
+            status, _, err = run(c.tp2, ["--stats", "--spp", "3", scene, out, "333", "211"], env)
+            c.require(status == 0, f"{name}.{ext}: exit {status}: {err}")
+            if name == "many":
+                c.expect("27 bands of 8 rows" in err, f"many.{ext}: {err!r}")
+            with open(out, "rb") as f:
+                outs.append(f.read())
+        c.expect(outs[0] == outs[1], f".{ext}: 27 bands and 1 band differ")
+
+
 def case_stats(c):
     """--stats names every phase and counts W x H x spp camera rays."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())

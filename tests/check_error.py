@@ -17,6 +17,7 @@ def main():
     tp2, scene = sys.argv[1], sys.argv[2]
     with open(scene, "rb") as f:
         first = f.readline().decode("utf-8", "replace").rstrip("\r\n")
+    first = first.removeprefix("\ufeff")  # a byte-order mark, itself under test
     prefix = "# expect: "
     if not first.startswith(prefix):
         print(f"{scene}: first line must start with '{prefix}'")

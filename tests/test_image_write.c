@@ -3,10 +3,12 @@
  * An asymmetric 5x3 image (every channel of every pixel a different level,
  * width != height, like stb's "F") is written as PPM, PFM and PNG into a
  * fresh temporary folder and read back (PPM and PFM by hand, PNG through
- * libpng) to catch flips, transposes and channel swaps. Also checked:
+ * libpng) to catch flips, transposes and channel swaps, whole and streamed
+ * in bands of rows through the image_writer API. Also checked:
  * quantisation at its boundaries, failure paths (nothing left behind),
- * atomic replacement, file mode and image_format_of. Prints
- * "N passed, M failed" last; exits 0 only when nothing failed. */
+ * atomic replacement, file modes kept, long names, outputs refused before
+ * anything is written, and image_format_of. Prints "N passed, M failed"
+ * last; exits 0 only when nothing failed. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <errno.h>
@@ -233,9 +235,10 @@ static void path_in(char *out, size_t size, const char *name)
         out[0] = '\0'; /* cannot happen: dir is short, names are cut */
 }
 
+/* The writer's temporary files: ".tp2-XXXXXX" beside the output. */
 static int is_temp(const char *name)
 {
-    return strstr(name, ".tmp-") != NULL;
+    return strncmp(name, ".tp2-", 5) == 0;
 }
 
 static int is_entry(const char *name)
@@ -526,7 +529,7 @@ static void test_failures(const float *rgba)
     CHECK(access(p, F_OK) != 0);
     CHECK(count_names(is_entry) == before);
 
-    /* Unknown format: fails after the temporary file exists. */
+    /* Unknown format: refused before any file exists. */
     path_in(p, sizeof p, "u.xyz");
     capture_begin();
     rc = image_write(p, IMAGE_UNKNOWN, W, H, rgba);
@@ -569,6 +572,210 @@ static void test_failures(const float *rgba)
     CHECK(count_names(is_entry) == before);
 }
 
+
+/* Streams the test image in bands of the given heights (summing to H). */
+static int write_in_bands(const char *p, enum image_format format, const float *rgba,
+                          const int *bands, int nbands)
+{
+    struct image_writer *w = image_writer_open(p, format, W, H);
+    if (!w)
+        return -1;
+    int y = 0;
+    for (int b = 0; b < nbands; b++) {
+        if (image_writer_rows(w, rgba + (size_t)y * W * 4, bands[b]) != 0) {
+            image_writer_abort(w);
+            return -1;
+        }
+        y += bands[b];
+    }
+    return image_writer_finish(w);
+}
+
+/* Same bytes in both files. */
+static int same_file(const char *a, const char *b)
+{
+    size_t na, nb;
+    unsigned char *da = read_all(a, &na), *db = read_all(b, &nb);
+    int same = da && db && na == nb && memcmp(da, db, na) == 0;
+    free(da);
+    free(db);
+    return same;
+}
+
+/* Rows arriving in bands (2 + 1 and 1 + 1 + 1 rows) give the same file as
+ * the whole image at once, in every format; the levels are checked again
+ * through the readers, so a band written at the wrong place (PFM stores
+ * rows bottom to top) cannot hide. */
+static void test_streaming(const float *rgba)
+{
+    static const char *ext[] = {"ppm", "png", "pfm"};
+    static const enum image_format fmt[] = {IMAGE_PPM, IMAGE_PNG, IMAGE_PFM};
+    static const int split_a[] = {2, 1}, split_b[] = {1, 1, 1};
+    for (int f = 0; f < 3; f++) {
+        char whole[256], a[256], b[256], name[32];
+        snprintf(name, sizeof name, "whole.%s", ext[f]);
+        path_in(whole, sizeof whole, name);
+        snprintf(name, sizeof name, "bands-a.%s", ext[f]);
+        path_in(a, sizeof a, name);
+        snprintf(name, sizeof name, "bands-b.%s", ext[f]);
+        path_in(b, sizeof b, name);
+        CHECK(image_write(whole, fmt[f], W, H, rgba) == 0);
+        CHECK(write_in_bands(a, fmt[f], rgba, split_a, 2) == 0);
+        CHECK(write_in_bands(b, fmt[f], rgba, split_b, 3) == 0);
+        expect(same_file(whole, a), "line %d: %s in bands of 2 + 1 rows", __LINE__, ext[f]);
+        expect(same_file(whole, b), "line %d: %s in bands of 1 row", __LINE__, ext[f]);
+        int w = 0, h = 0;
+        unsigned char *rgb = f == 0 ? read_ppm(a, &w, &h) : f == 1 ? read_png(a, &w, &h) : NULL;
+        if (f == 2) {
+            float *fl = read_pfm(a, &w, &h);
+            rgb = fl ? malloc(W * H * 3) : NULL;
+            for (int i = 0; rgb && i < W * H * 3; i++)
+                rgb[i] = image_quantize(fl[i]);
+            free(fl);
+        }
+        CHECK(rgb && w == W && h == H);
+        if (rgb)
+            check_levels(rgb, ext[f], __LINE__);
+        free(rgb);
+        unlink(whole);
+        unlink(a);
+        unlink(b);
+    }
+}
+
+/* A writer given too few or too many rows fails and leaves nothing; one
+ * aborted leaves an existing output as it was. */
+static void test_streaming_failures(const float *rgba)
+{
+    char p[256];
+    int before = count_names(is_entry);
+    path_in(p, sizeof p, "short.png");
+    struct image_writer *w = image_writer_open(p, IMAGE_PNG, W, H);
+    CHECK(w != NULL);
+    CHECK(count_names(is_temp) == 1); /* created before any row */
+    CHECK(w && image_writer_rows(w, rgba, H - 1) == 0);
+    capture_begin();
+    int rc = w ? image_writer_finish(w) : -1;
+    char *err = capture_end();
+    CHECK(rc == -1 && starts_with(err, "tp2: cannot write '"));
+    free(err);
+    CHECK(count_names(is_entry) == before);
+
+    path_in(p, sizeof p, "long.pfm");
+    w = image_writer_open(p, IMAGE_PFM, W, H);
+    capture_begin();
+    rc = w ? image_writer_rows(w, rgba, H + 1) : 0;
+    free(capture_end());
+    CHECK(rc == -1);
+    image_writer_abort(w);
+    CHECK(count_names(is_entry) == before);
+
+    path_in(p, sizeof p, "kept.ppm");
+    CHECK(image_write(p, IMAGE_PPM, W, H, rgba) == 0);
+    w = image_writer_open(p, IMAGE_PPM, W, H);
+    CHECK(w && image_writer_rows(w, rgba, 1) == 0);
+    image_writer_abort(w);
+    int ww = 0, hh = 0;
+    unsigned char *rgb = read_ppm(p, &ww, &hh);
+    CHECK(rgb && ww == W && hh == H);
+    if (rgb)
+        check_levels(rgb, "kept.ppm survives an aborted writer", __LINE__);
+    free(rgb);
+    unlink(p);
+    CHECK(count_names(is_entry) == before);
+}
+
+/* Replacing an output keeps its permission bits (0600 stays 0600); a new
+ * output gets 0666 & ~umask whatever the umask. */
+static void test_modes(const float *rgba)
+{
+    static const mode_t modes[] = {0600, 0640, 0444, 0755};
+    char p[256];
+    path_in(p, sizeof p, "m.png");
+    for (int i = 0; i < 4; i++) {
+        CHECK(image_write(p, IMAGE_PNG, W, H, rgba) == 0);
+        CHECK(chmod(p, modes[i]) == 0);
+        CHECK(image_write(p, IMAGE_PNG, W, H, rgba) == 0);
+        struct stat st;
+        CHECK(stat(p, &st) == 0);
+        expect((st.st_mode & 0777) == modes[i], "line %d: mode %o kept, got %o", __LINE__,
+               (unsigned)modes[i], (unsigned)(st.st_mode & 0777));
+        unlink(p);
+    }
+    mode_t saved = umask(027);
+    CHECK(image_write(p, IMAGE_PNG, W, H, rgba) == 0);
+    umask(saved);
+    struct stat st;
+    CHECK(stat(p, &st) == 0 && (st.st_mode & 0777) == 0640);
+    unlink(p);
+}
+
+/* Names of 245 to 255 bytes (NAME_MAX) work: the temporary name is short
+ * and its own. */
+static void test_long_names(const float *rgba)
+{
+    int before = count_names(is_entry);
+    for (int len = 245; len <= 255; len += 5) {
+        char name[256], p[512];
+        memset(name, 'n', (size_t)len - 4);
+        memcpy(name + len - 4, ".ppm", 5);
+        snprintf(p, sizeof p, "%s/%s", dir, name);
+        expect(image_write(p, IMAGE_PPM, W, H, rgba) == 0, "line %d: a %d-byte name",
+               __LINE__, len);
+        expect(access(p, F_OK) == 0, "line %d: a %d-byte name exists", __LINE__, len);
+        unlink(p);
+    }
+    CHECK(count_names(is_entry) == before);
+}
+
+/* Outputs that cannot be written are refused by image_writer_open, before
+ * a render would start: a missing folder, a folder as the output, a
+ * non-regular file; nothing is created, the message names the reason. */
+static void test_refused_early(void)
+{
+    int before = count_names(is_entry);
+    char p[256], msg[400];
+    path_in(p, sizeof p, "nowhere/out.png");
+    capture_begin();
+    struct image_writer *w = image_writer_open(p, IMAGE_PNG, W, H);
+    char *err = capture_end();
+    snprintf(msg, sizeof msg, "tp2: cannot write '%s': %s\n", p, strerror(ENOENT));
+    CHECK(w == NULL && strcmp(err, msg) == 0);
+    free(err);
+
+    path_in(p, sizeof p, "folder.ppm");
+    CHECK(mkdir(p, 0700) == 0);
+    capture_begin();
+    w = image_writer_open(p, IMAGE_PPM, W, H);
+    err = capture_end();
+    snprintf(msg, sizeof msg, "tp2: cannot write '%s': %s\n", p, strerror(EISDIR));
+    CHECK(w == NULL && strcmp(err, msg) == 0);
+    free(err);
+    rmdir(p);
+
+    capture_begin();
+    w = image_writer_open("/dev/null", IMAGE_PPM, W, H);
+    err = capture_end();
+    CHECK(w == NULL && strcmp(err, "tp2: cannot write '/dev/null': not a regular file\n") == 0);
+    free(err);
+    image_writer_abort(w);
+    CHECK(count_names(is_entry) == before);
+}
+
+/* Bytes outside printable ASCII in a name are shown as \xNN, never raw. */
+static void test_escaped_name(void)
+{
+    char p[256];
+    path_in(p, sizeof p, "no\x1b[31mdir\n/out.ppm");
+    capture_begin();
+    struct image_writer *w = image_writer_open(p, IMAGE_PPM, W, H);
+    char *err = capture_end();
+    CHECK(w == NULL);
+    CHECK(strstr(err, "no\\x1b[31mdir\\x0a/out.ppm': ") != NULL);
+    CHECK(strchr(err, '\x1b') == NULL && strchr(err, '\n') == err + strlen(err) - 1);
+    free(err);
+}
+
 int main(void)
 {
     const char *tmp = getenv("TMPDIR");
@@ -588,6 +795,12 @@ int main(void)
     CHECK(count_names(is_temp) == 0);
     test_replace(rgba);
     test_failures(rgba);
+    test_streaming(rgba);
+    test_streaming_failures(rgba);
+    test_modes(rgba);
+    test_long_names(rgba);
+    test_refused_early();
+    test_escaped_name();
     CHECK(count_names(is_temp) == 0);
 
     remove_dir();

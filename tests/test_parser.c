@@ -472,6 +472,54 @@ static void test_byte_errors(void)
                  "'12345678901234567890123456789012...'");
 }
 
+/* A UTF-8 byte-order mark before the text is skipped: the scene parses,
+ * and positions count from the first byte after it. Anywhere else, or
+ * cut short, it is an error like any other bytes. */
+static void test_byte_order_mark(void)
+{
+    struct scene s = parse_ok("\xef\xbb\xbf" BASE, __LINE__);
+    CHECK(s.nlights == 2 && s.nobjects == 1 && s.fov == 45);
+    scene_free(&s);
+    s = parse_ok("\xef\xbb\xbf# comment\n" BASE, __LINE__);
+    CHECK(s.nobjects == 1);
+    scene_free(&s);
+    s = parse_ok("\xef\xbb\xbf" "out.ppm 64 48\n" BASE, __LINE__);
+    CHECK(s.has_size && s.width == 64 && s.height == 48);
+    scene_free(&s);
+    EXPECT_ERROR("\xef\xbb\xbf" "0 0 y\n", "t.txt:1:5: error: expected a number, found 'y'");
+    EXPECT_ERROR("\xef\xbb\xbf" "0 0 0\n0 0 x\n",
+                 "t.txt:2:5: error: expected a number, found 'x'");
+    /* Only one mark, only at the start. */
+    EXPECT_ERROR("0 \xef\xbb\xbf", "t.txt:1:3: error: expected a number, found "
+                                      "'\\xef\\xbb\\xbf'");
+    EXPECT_ERROR("\xef\xbb\xbf" "0 0 0\n\xef\xbb\xbf",
+                 "t.txt:2:1: error: expected a number, found '\\xef\\xbb\\xbf'");
+}
+
+/* A file name with bytes outside printable ASCII (escape sequences, new
+ * lines) is shown with them as \xNN, whole, however long. */
+static void test_escaped_names(void)
+{
+    struct scene s;
+    char err[4096];
+    const char *text = "0 0 x\n";
+    int rc = scene_parse_text("a\x1b[2Jb\nc.txt", text, strlen(text), &s, err, sizeof err);
+    CHECK(rc == -1 &&
+          strcmp(err, "a\\x1b[2Jb\\x0ac.txt:1:5: error: expected a number, found 'x'") == 0);
+    char name[301];
+    memset(name, 'n', 300);
+    name[300] = '\0';
+    name[150] = '\t';
+    rc = scene_parse_text(name, text, strlen(text), &s, err, sizeof err);
+    CHECK(rc == -1 && strncmp(err, name, 150) == 0 && strncmp(err + 150, "\\x09", 4) == 0 &&
+          strncmp(err + 154, name + 151, 149) == 0 && strcmp(err + 303, ":1:5: error: "
+          "expected a number, found 'x'") == 0);
+    CHECK(SCENE_ERROR_SIZE(300) > strlen(err));
+    rc = scene_parse_file("/nonexistent/\x01.txt", &s, err, sizeof err);
+    const char *want = "tp2: cannot read '/nonexistent/\\x01.txt': ";
+    CHECK(rc == -1 && strncmp(err, want, strlen(want)) == 0);
+}
+
 static void test_truncation_errors(void)
 {
     EXPECT_ERROR("0 0 0\n0 0 -1\n0 1 0\n",
@@ -670,6 +718,8 @@ int main(void)
     test_api_edges();
     test_lexical_errors();
     test_byte_errors();
+    test_byte_order_mark();
+    test_escaped_names();
     test_truncation_errors();
     test_count_errors();
     test_index_errors();
