@@ -26,6 +26,12 @@
 #undef TP2_REAL
 #undef TP2_SUFFIX
 
+/* A saved walk: no reals, so one struct serves both shaders. */
+struct gpu_walk {
+    _Alignas(16) int32_t where[4]; /* pixel x, y; rays parked (-1: done); rays traced */
+    _Alignas(16) float color[4];   /* rgb so far, pruning budget left */
+};
+
 #define TP2_LAYOUT(type, field, offset) \
     _Static_assert(offsetof(struct type, field) == (offset), #type "." #field)
 #define TP2_SIZE(type, size) \
@@ -98,6 +104,18 @@ TP2_LAYOUT(gpu_object_d, b, 32);
 TP2_LAYOUT(gpu_object_d, c, 64);
 TP2_LAYOUT(gpu_object_d, ids, 96);
 TP2_SIZE(gpu_object_d, 128);
+
+TP2_LAYOUT(gpu_walk_ray_f, origin, 0);
+TP2_LAYOUT(gpu_walk_ray_f, dir, 16);
+TP2_LAYOUT(gpu_walk_ray_f, info, 32);
+TP2_SIZE(gpu_walk_ray_f, 48);
+TP2_LAYOUT(gpu_walk_ray_d, origin, 0);
+TP2_LAYOUT(gpu_walk_ray_d, dir, 32);
+TP2_LAYOUT(gpu_walk_ray_d, info, 64);
+TP2_SIZE(gpu_walk_ray_d, 96);
+TP2_LAYOUT(gpu_walk, where, 0);
+TP2_LAYOUT(gpu_walk, color, 16);
+TP2_SIZE(gpu_walk, 32);
 
 #undef TP2_LAYOUT
 #undef TP2_SIZE

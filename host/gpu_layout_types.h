@@ -54,6 +54,12 @@ struct TP2_T(gpu_object) { /* what each kind keeps where: shapes.c */
     TP2_IVEC4(ids);  /* TP2_SHAPE_*, pigment, finish, first row in extra */
 };
 
+struct TP2_T(gpu_walk_ray) { /* a saved walk's ray (layout.glsl, WalkRay) */
+    TP2_RVEC4(origin); /* xyz, weight */
+    TP2_RVEC4(dir);    /* xyz */
+    TP2_IVEC4(info);   /* start object, start inward, depth */
+};
+
 #undef TP2_RVEC4
 #undef TP2_VEC4
 #undef TP2_IVEC4

@@ -46,6 +46,8 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);
+    fprintf(stderr, "tp2: passes     %8u (walks of at most %d rays each)\n", st->passes,
+            st->pass_rays);
     fprintf(stderr, "tp2: readback   %8.3f s (copying finished bands from the device)\n",
             st->readback);
     fprintf(stderr, "tp2: write      %8.3f s (encoding and writing rows while the next "

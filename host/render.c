@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "gpu_layout.h"
 #include "pipeline_cache.h"
 #include "progress.h"
 #include "scene_pack.h"
@@ -36,6 +37,17 @@
 /* Bytes of one pixel in the band buffer: an RGBA32F vec4. */
 #define TP2_PIXEL_BYTES (4 * sizeof(float))
 
+/* Walks that go on in a next pass, on CPU devices (TP2_CANARY_STEPS): the
+ * walk buffers hold this many (16k walks are 2 MB of Walks and 8.6 / 17 MB
+ * of rays in float / double); more than this many unfinished walks at once
+ * start again after these are done. */
+#define TP2_WALK_CAPACITY 16384
+
+/* Rays a walk traces in its first pass on CPU devices: most pixel samples
+ * need far fewer. A pass that lavapipe cuts short is run again with half
+ * as many, and later passes keep the smaller number. */
+#define TP2_CPU_PASS_RAYS 256
+
 struct renderer {
     struct vkc vk;
     struct vk_buffer buffers[TP2_BINDING_COUNT];
@@ -51,17 +63,25 @@ struct renderer {
     VkFence fence;
     int band_rows;    /* rows per band; the band buffer holds this many */
     float *host_band; /* the last finished band, copied out for the writer */
+    bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
+    int pass_rays;    /* rays a walk traces per pass */
+    int walk_capacity;
 };
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
- * then the number of pixel samples lavapipe cut short. */
-#define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + 1)
+ * then the TP2_COUNTER_*s. */
+#define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + TP2_COUNTER_COUNT)
 #define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
-/* What one dispatch covers: a band of rows, and one sample per pixel. */
+/* What one dispatch covers (layout.glsl's Tile): a band of rows, one
+ * sample per pixel, one pass of their walks. */
 struct tile_push {
     int32_t origin[2];
     int32_t sample;
+    int32_t pass_kind;
+    int32_t pass_rays;
+    int32_t walk_capacity;
+    int32_t accept_cut;
     int32_t pad;
 };
 
@@ -83,17 +103,27 @@ static VkDeviceSize band_bytes_max(const struct vkc *vk)
 }
 
 /* The scene's buffers, filled; the band buffer (band_size bytes), its host
- * copy and the stats buffer. */
+ * copy, the stats buffer, and the walks' buffers (on CPU devices; one
+ * element elsewhere, where walks finish in their first pass). */
 static int create_buffers(struct renderer *r, const struct packed_scene *p,
-                          VkDeviceSize band_size)
+                          VkDeviceSize band_size, bool use_double)
 {
     for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
         if (vk_buffer_create(&r->vk, p->size[i], false, &r->buffers[i]) != 0)
             return -1;
         memcpy(r->buffers[i].mapped, p->data[i], p->size[i]);
     }
+    VkDeviceSize pixels = band_size / TP2_PIXEL_BYTES;
+    VkDeviceSize walks = (VkDeviceSize)r->walk_capacity;
+    VkDeviceSize ray = use_double ? sizeof(struct gpu_walk_ray_d) : sizeof(struct gpu_walk_ray_f);
     if (vk_buffer_create(&r->vk, band_size, true, &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
-        vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0)
+        vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0 ||
+        vk_buffer_create(&r->vk, (r->loop_guard ? pixels : 1) * sizeof(uint32_t), false,
+                         &r->buffers[TP2_BINDING_STARTED]) != 0 ||
+        vk_buffer_create(&r->vk, walks * sizeof(struct gpu_walk), false,
+                         &r->buffers[TP2_BINDING_WALKS]) != 0 ||
+        vk_buffer_create(&r->vk, walks * TP2_WALK_RAYS * ray, false,
+                         &r->buffers[TP2_BINDING_WALK_RAYS]) != 0)
         return -1;
     memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
     if (!(r->host_band = malloc((size_t)band_size))) {
@@ -109,16 +139,18 @@ static void read_ray_counts(const uint32_t *words, uint64_t rays[TP2_STAT_COUNT]
         rays[i] = (uint64_t)words[2 * i + 1] << 32 | words[2 * i];
 }
 
-/* Says so when lavapipe cut samples short (TP2_CANARY_STEPS): the image
- * is still written, but the user must know. */
+/* Says so when a pixel sample needed more than lavapipe allows one
+ * invocation even one ray at a time (TP2_CANARY_STEPS): the image is
+ * still written, but the user must know. */
 static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
 {
-    uint32_t samples = words[2 * TP2_STAT_COUNT];
+    uint32_t samples = words[2 * TP2_STAT_COUNT + TP2_COUNTER_LOST];
     if (samples > 0)
-        fprintf(stderr, "tp2: warning: '%s' cut %u pixel sample%s short (it stops a "
-                        "shader's loops after 65535 iterations), so they are wrong; prune "
-                        "faint rays (--bailout, default 1/255) or render on a GPU\n",
-                vk->props.deviceName, samples, samples == 1 ? "" : "s");
+        fprintf(stderr, "tp2: warning: %u pixel sample%s needed more than '%s' lets one "
+                        "shader invocation do (65535 loop iterations) for a single ray, "
+                        "so %s wrong; render on a GPU\n",
+                samples, samples == 1 ? "" : "s", vk->props.deviceName,
+                samples == 1 ? "it is" : "they are");
 }
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
@@ -188,7 +220,7 @@ static int create_pipeline(struct renderer *r, bool use_double,
     TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
     int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(features, count_rays, needs_loop_guard(&r->vk), values, map);
+    spec_values(features, count_rays, r->loop_guard, values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
@@ -276,34 +308,55 @@ static int create_commands(struct renderer *r)
     return 0;
 }
 
-/* Records and submits one dispatch: one sample of the band of rows
- * [y, y + rows), written to the band buffer from its first row on. */
-static int submit_band_sample(struct renderer *r, int width, int y, int rows, int sample)
+/* Records and submits one pass (TP2_PASS_*) of sample `sample`'s walks
+ * over the band of rows [y, y + rows): a TP2_PASS_START dispatch covers
+ * the band, a TP2_PASS_CONTINUE one the `walks` saved walks. `clear`: the
+ * sample's first pass, which clears the band's started flags first. */
+static int submit_pass(struct renderer *r, int width, int y, int rows, int sample, int kind,
+                       uint32_t walks, bool clear)
 {
-    struct tile_push push = {{0, y}, sample, 0};
+    struct tile_push push = {{0, y}, sample, kind, r->pass_rays, r->walk_capacity,
+                             r->pass_rays == 1, 0};
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
     };
     TP2_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
     TP2_VK_TRY(vkBeginCommandBuffer(r->cmd, &begin));
+    if (clear && r->loop_guard) {
+        vkCmdFillBuffer(r->cmd, r->buffers[TP2_BINDING_STARTED].buffer, 0, VK_WHOLE_SIZE, 0);
+        VkMemoryBarrier cleared = {
+            .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+            .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+        };
+        vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, NULL,
+                             0, NULL);
+    }
     vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
     vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                             r->pipeline_layout, 0, 1, &r->set, 0, NULL);
     vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                        0, sizeof push, &push);
-    vkCmdDispatch(r->cmd, (uint32_t)(width + TP2_GROUP_X - 1) / TP2_GROUP_X,
-                  (uint32_t)(rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
-    /* Make the shader's writes visible to the next sample's dispatch, which
-     * adds to them, and to the host's reads after the fence. */
+    uint32_t group = TP2_GROUP_X * TP2_GROUP_Y;
+    if (kind == TP2_PASS_START)
+        vkCmdDispatch(r->cmd, (uint32_t)(width + TP2_GROUP_X - 1) / TP2_GROUP_X,
+                      (uint32_t)(rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
+    else
+        vkCmdDispatch(r->cmd, (walks + group - 1) / group, 1, 1);
+    /* Make the shader's writes visible to the next pass, which adds to the
+     * pixels, goes on with the walks and clears the started flags, and to
+     * the host's reads after the fence. */
     VkMemoryBarrier barrier = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
         .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
         .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                         VK_ACCESS_HOST_READ_BIT,
+                         VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
     };
     vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT |
+                             VK_PIPELINE_STAGE_TRANSFER_BIT,
                          0, 1, &barrier, 0, NULL, 0, NULL);
     TP2_VK_TRY(vkEndCommandBuffer(r->cmd));
     VkSubmitInfo submit = {
@@ -316,7 +369,7 @@ static int submit_band_sample(struct renderer *r, int width, int y, int rows, in
     return 0;
 }
 
-static int wait_band_sample(struct renderer *r)
+static int wait_pass(struct renderer *r)
 {
     TP2_VK_TRY(vkWaitForFences(r->vk.device, 1, &r->fence, VK_TRUE, UINT64_MAX));
     return 0;
@@ -363,6 +416,58 @@ static int hand_on(struct renderer *r, struct host_band *b, int upto, int width,
     return rc;
 }
 
+/* What the host writes while a band's first pass renders: rows of the
+ * band it holds, up to `upto`. */
+struct writing {
+    struct host_band *held;
+    int upto, width;
+    render_rows_fn on_rows;
+    void *user;
+    double *time;
+};
+
+/* Runs sample `sample` of the band [y, y + rows) to the end: every pixel's
+ * walk starts in a first pass; on a CPU device those that did not finish
+ * go on in further passes, and a pass that lavapipe cut short runs again
+ * with half the rays per walk (TP2_CANARY_STEPS). While the first pass
+ * renders, the host writes (w). *passes counts the passes. */
+static int render_band_sample(struct renderer *r, int width, int y, int rows, int sample,
+                              const struct writing *w, uint32_t *passes)
+{
+    uint32_t *count = (uint32_t *)r->buffers[TP2_BINDING_STATS].mapped + 2 * TP2_STAT_COUNT;
+    int kind = TP2_PASS_START;
+    bool first = true;
+    bool waiting = false; /* walks found no room: their pixels start again */
+    count[TP2_COUNTER_WALKS] = 0;
+    for (;;) {
+        count[TP2_COUNTER_CUT] = count[TP2_COUNTER_UNFINISHED] = count[TP2_COUNTER_WAITING] = 0;
+        uint32_t walks = count[TP2_COUNTER_WALKS];
+        if (walks > (uint32_t)r->walk_capacity)
+            walks = (uint32_t)r->walk_capacity;
+        if (submit_pass(r, width, y, rows, sample, kind, walks, first) != 0 ||
+            (first && hand_on(r, w->held, w->upto, w->width, w->on_rows, w->user, w->time) != 0) ||
+            wait_pass(r) != 0)
+            return -1;
+        first = false;
+        ++*passes;
+        if (count[TP2_COUNTER_CUT] > 0 && r->pass_rays > 1) {
+            r->pass_rays /= 2; /* the same pass again: cut walks are as they were */
+            continue;
+        }
+        if (kind == TP2_PASS_START)
+            waiting = count[TP2_COUNTER_WAITING] > 0;
+        if (count[TP2_COUNTER_WALKS] > 0 &&
+            (kind == TP2_PASS_START || count[TP2_COUNTER_UNFINISHED] > 0)) {
+            kind = TP2_PASS_CONTINUE;
+        } else if (waiting) { /* every saved walk is done: room for the rest */
+            kind = TP2_PASS_START;
+            count[TP2_COUNTER_WALKS] = 0;
+        } else {
+            return 0;
+        }
+    }
+}
+
 /* Renders every sample of every pixel, band by band, one dispatch per band
  * and sample, each adding its sample's share to the pixels. One sample per
  * dispatch also keeps each invocation's work bounded: lavapipe ends a
@@ -386,12 +491,9 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
     for (int band = 0; band < bands && rc == 0; band++) {
         int y = band * rows, n = height - y < rows ? height - y : rows;
         for (int s = 0; s < samples && rc == 0; s++) {
-            rc = submit_band_sample(r, width, y, n, s);
-            if (rc == 0)
-                rc = hand_on(r, &held, (int)((int64_t)held.rows * (s + 1) / samples),
-                             width, on_rows, user, &st->write);
-            if (rc == 0)
-                rc = wait_band_sample(r);
+            struct writing w = {&held, (int)((int64_t)held.rows * (s + 1) / samples), width,
+                                on_rows, user, &st->write};
+            rc = render_band_sample(r, width, y, n, s, &w, &st->passes);
             progress_update(&bar, (double)(band * samples + s + 1) / ((double)samples * bands));
         }
         if (rc == 0) { /* the device may reuse its buffer once this is copied */
@@ -427,6 +529,20 @@ static void renderer_destroy(struct renderer *r)
     }
     vkc_destroy(&r->vk);
     free(r->host_band);
+}
+
+/* Rays per walk per pass to begin with: TP2_CPU_PASS_RAYS on CPU devices,
+ * a whole tree elsewhere. The environment variable TP2_PASS_RAYS sets it
+ * on CPU devices, so that tests can make walks go on across many passes. */
+static int pass_rays(bool loop_guard)
+{
+    const char *env = getenv("TP2_PASS_RAYS");
+    char *end;
+    long v = env ? strtol(env, &end, 10) : 0;
+    if (!loop_guard)
+        return TP2_MAX_RAYS;
+    return env && *env >= '1' && *env <= '9' && *end == '\0' && v <= TP2_MAX_RAYS
+               ? (int)v : TP2_CPU_PASS_RAYS;
 }
 
 /* Even the smallest band (TP2_GROUP_Y rows) must fit the band limit; with
@@ -476,8 +592,11 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         goto done;
     }
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
+    r.loop_guard = needs_loop_guard(&r.vk);
+    r.pass_rays = pass_rays(r.loop_guard);
+    r.walk_capacity = r.loop_guard ? TP2_WALK_CAPACITY : 1;
     VkDeviceSize band_size = (VkDeviceSize)r.band_rows * opt->width * TP2_PIXEL_BYTES;
-    if (create_buffers(&r, &packed, band_size) != 0)
+    if (create_buffers(&r, &packed, band_size, opt->use_double) != 0)
         goto done;
     double t2 = clock_seconds();
     if (create_pipeline(&r, opt->use_double, &packed.features, opt->count_rays) != 0 ||
@@ -488,6 +607,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
                   on_rows, user, stats) != 0)
         goto done;
     read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
+    stats->pass_rays = r.pass_rays;
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = t1 - t0;
     stats->upload = t2 - t1;

@@ -28,6 +28,9 @@ struct render_options {
 struct render_stats {
     double device, pipeline, upload, render, readback, write;
     int bands, band_rows; /* bands rendered, rows in each (the last: fewer) */
+    uint32_t passes;      /* dispatches: a pass per band and sample, more
+                           * where walks went on or lavapipe cut a pass */
+    int pass_rays;        /* rays per walk per pass at the end */
     uint64_t rays[TP2_STAT_COUNT]; /* TP2_STAT_*; zero unless count_rays */
     char device_name[256];
 };

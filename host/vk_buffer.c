@@ -12,7 +12,7 @@ int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
     VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
-        .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
     TP2_VK_TRY(vkCreateBuffer(c->device, &info, NULL, &b->buffer));

@@ -64,16 +64,39 @@ layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { 
 // Texmap images: one word per texel, r | g << 8 | b << 16, rows top to bottom.
 layout(std430, set = 0, binding = TP2_BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
-// Ray counters as (low, high) pairs, then how many samples lavapipe cut short.
+// Ray counters as (low, high) pairs, then the TP2_COUNTER_*s.
 layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf {
     uint ray_counts[2 * TP2_STAT_COUNT];
-    uint cut_short;
+    uint counters[TP2_COUNTER_COUNT];
 };
 
-// What this dispatch covers: a band of pixels, and which of their samples.
+// A walk that goes on in the next pass (see TP2_CANARY_STEPS), and its
+// rays: the current one, then those parked.
+struct Walk {
+    ivec4 where; // pixel x, y; rays parked (-1: finished); rays traced so far
+    vec4 color;  // rgb so far, pruning budget left
+};
+
+struct WalkRay {
+    rvec4 origin; // xyz, weight
+    rvec4 dir;    // xyz
+    ivec4 info;   // start object, start inward, depth
+};
+
+layout(std430, set = 0, binding = TP2_BINDING_STARTED) buffer StartedBuf { uint started[]; };
+layout(std430, set = 0, binding = TP2_BINDING_WALKS) buffer WalkBuf { Walk walks[]; };
+layout(std430, set = 0, binding = TP2_BINDING_WALK_RAYS) buffer WalkRayBuf { WalkRay saved_rays[]; };
+
+// What this dispatch covers: a band of pixels, which of their samples,
+// which pass, and how many rays a walk may trace in it.
 layout(push_constant) uniform Tile {
     ivec2 tile_origin;
     int sample_index;
+    int pass_kind;       // TP2_PASS_*
+    int pass_rays;       // rays each walk may trace in this pass
+    int walk_capacity;   // walks the walk buffers hold
+    int accept_cut;      // 1: pass_rays is 1 and still cut: keep what there is
+    int pad;
 };
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;

@@ -17,7 +17,10 @@
 #define TP2_BINDING_TEXELS 7 /* texmap images, one RGBA8 word per texel */
 #define TP2_BINDING_IMAGE 8
 #define TP2_BINDING_STATS 9
-#define TP2_BINDING_COUNT 10
+#define TP2_BINDING_STARTED 10   /* per band pixel: its walk has begun */
+#define TP2_BINDING_WALKS 11     /* walks that go on in the next pass */
+#define TP2_BINDING_WALK_RAYS 12 /* their rays: TP2_WALK_RAYS per walk */
+#define TP2_BINDING_COUNT 13
 
 /* Specialization constants: the pipeline is compiled for the features the
  * scene uses, so a scene without them pays nothing for them. */
@@ -44,10 +47,27 @@
 
 /* lavapipe ends all loops of a shader invocation (a SIMD vector of lanes)
  * after 65535 iterations in total, silently (Mesa's gallivm,
- * LP_MAX_TGSI_LOOP_ITERATIONS). On CPU devices each invocation ends with a
- * loop of TP2_CANARY_STEPS iterations (a count read from the frame, so no
- * compiler can unroll it): if it stops early, the invocation was cut. */
+ * LP_MAX_TGSI_LOOP_ITERATIONS): a deep ray tree, or a ray meeting many
+ * objects, needs more. So on CPU devices a pixel sample's walk through its
+ * ray tree runs in passes of at most a given number of rays; a walk that
+ * has more to do saves its state and goes on in the next pass. Each
+ * invocation ends with a loop of TP2_CANARY_STEPS iterations (a count read
+ * from the frame, so no compiler can unroll it): if it stops early, the
+ * invocation was cut, writes nothing, and its pass is run again with
+ * fewer rays. */
 #define TP2_CANARY_STEPS 2
+
+/* Counters in the stats buffer, after the ray counts. */
+#define TP2_COUNTER_CUT 0        /* invocations cut short in this pass */
+#define TP2_COUNTER_WALKS 1      /* walks saved (may exceed the capacity) */
+#define TP2_COUNTER_UNFINISHED 2 /* walks that go on after this pass */
+#define TP2_COUNTER_WAITING 3    /* walks with no room to be saved */
+#define TP2_COUNTER_LOST 4       /* samples cut even one ray at a time */
+#define TP2_COUNTER_COUNT 5
+
+/* Passes: start the walks of a band's pixels, or go on with saved ones. */
+#define TP2_PASS_START 0
+#define TP2_PASS_CONTINUE 1
 
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32
@@ -87,6 +107,9 @@
  * at once and parks the second, so what is parked is at most one sibling
  * per depth 1..TP2_MAX_DEPTH on the path being followed. */
 #define TP2_STACK_SIZE TP2_MAX_DEPTH
+
+/* Rays a saved walk keeps: the current one and those parked. */
+#define TP2_WALK_RAYS (TP2_STACK_SIZE + 1)
 
 /* Workgroup: 8x8 pixels, a multiple of lavapipe's 8-wide SIMD and of GPUs'
  * 32/64-wide subgroups. */

@@ -177,30 +177,82 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
     return children;
 }
 
-// The color seen along a camera ray. The walk follows each ray's first
-// child at once and parks the second on the stack, so the stack is only
-// touched where the tree branches.
-vec3 trace(rvec3 eye, rvec3 dir, vec2 area_shift)
+// A pixel sample's walk through its ray tree: it follows each ray's first
+// child at once and parks the second, so the stack is only touched where
+// the tree branches. Global, so that passes can save and resume it.
+Ray walk_ray;                    // the ray to trace next, if live
+Ray walk_pending[STACK_SIZE];    // rays parked
+int walk_sp;                     // how many
+int walk_traced;                 // rays traced so far
+bool walk_live;
+vec3 walk_color;                 // what the rays traced so far add
+float walk_budget;               // pruning budget left (see traced())
+
+void walk_start(rvec3 eye, rvec3 dir)
 {
-    Ray pending[STACK_SIZE];
-    int sp = 0;
-    Ray ray = Ray(eye, dir, NOWHERE, 1.0, 0);
-    bool live = true; // `ray` is still to be traced
-    vec3 color = vec3(0.0);
-    float budget = 0.5 * frame.limits.x; // pruned weight this sample may drop
-    for (int iter = 0; iter < MAX_RAYS && live; ++iter) {
+    walk_ray = Ray(eye, dir, NOWHERE, 1.0, 0);
+    walk_sp = 0;
+    walk_traced = 0;
+    walk_live = true;
+    walk_color = vec3(0.0);
+    walk_budget = 0.5 * frame.limits.x;
+}
+
+// Traces at most `rays` more rays of the walk.
+void walk_on(int rays, vec2 area_shift)
+{
+    for (int i = 0; i < rays && walk_live && walk_traced < MAX_RAYS; ++i) {
         Ray first, second;
-        int children = trace_step(ray, area_shift, color, budget, first, second);
-        if (children == 2 && sp < STACK_SIZE)
-            pending[sp++] = second;
+        int children = trace_step(walk_ray, area_shift, walk_color, walk_budget, first, second);
+        ++walk_traced;
+        if (children == 2 && walk_sp < STACK_SIZE)
+            walk_pending[walk_sp++] = second;
         if (children > 0)
-            ray = first;
-        else if (sp > 0)
-            ray = pending[--sp];
+            walk_ray = first;
+        else if (walk_sp > 0)
+            walk_ray = walk_pending[--walk_sp];
         else
-            live = false;
+            walk_live = false;
     }
-    return color;
+    if (walk_traced >= MAX_RAYS) // cannot happen: a full tree has MAX_RAYS rays
+        walk_live = false;
+}
+
+WalkRay packed_ray(Ray r)
+{
+    return WalkRay(rvec4(r.origin, r.weight), rvec4(r.dir, 0.0),
+                   ivec4(r.start.object, int(r.start.inward), r.depth, 0));
+}
+
+Ray unpacked_ray(WalkRay w)
+{
+    return Ray(w.origin.xyz, w.dir.xyz, Start(w.info.x, w.info.y != 0), float(w.origin.w),
+               w.info.z);
+}
+
+void walk_save(int entry, ivec2 pixel)
+{
+    walks[entry] = Walk(ivec4(pixel, walk_sp, walk_traced), vec4(walk_color, walk_budget));
+    int base = entry * TP2_WALK_RAYS;
+    saved_rays[base] = packed_ray(walk_ray);
+    for (int k = 0; k < walk_sp; ++k)
+        saved_rays[base + 1 + k] = packed_ray(walk_pending[k]);
+}
+
+// Resumes saved walk `entry`; its pixel.
+ivec2 walk_load(int entry)
+{
+    Walk w = walks[entry];
+    walk_sp = w.where.z;
+    walk_traced = w.where.w;
+    walk_live = true;
+    walk_color = w.color.rgb;
+    walk_budget = w.color.a;
+    int base = entry * TP2_WALK_RAYS;
+    walk_ray = unpacked_ray(saved_rays[base]);
+    for (int k = 0; k < walk_sp; ++k)
+        walk_pending[k] = unpacked_ray(saved_rays[base + 1 + k]);
+    return w.where.xy;
 }
 
 // The camera ray through image-plane position (x, y) in [-1, 1]^2, through
@@ -217,42 +269,92 @@ void camera_ray(real x, real y, vec2 lens_sample, out rvec3 origin, out rvec3 di
     }
 }
 
+// Whether lavapipe cut this invocation short (see TP2_CANARY_STEPS).
+bool was_cut()
+{
+    int canary = 0;
+    for (int k = 0; k < frame.sampling.w; ++k)
+        ++canary;
+    return canary != frame.sampling.w;
+}
+
+// Adds this invocation's rays to the stats (64-bit counters from 32-bit
+// atomics: a carry goes into the high word).
+void count_rays()
+{
+    for (int i = 0; i < TP2_STAT_COUNT; ++i) {
+        uint before = atomicAdd(ray_counts[2 * i], ray_tally[i]);
+        if (before + ray_tally[i] < before)
+            atomicAdd(ray_counts[2 * i + 1], 1u);
+    }
+}
+
+// One pixel sample, or one saved walk, for one pass (TP2_PASS_*): its walk
+// goes on for pass_rays rays; if it finishes, the sample's share is added
+// to its pixel, else it is saved for the next pass. An invocation that
+// lavapipe cut short writes nothing (its pass runs again with fewer rays).
 void main()
 {
-    ivec2 pixel = tile_origin + ivec2(gl_GlobalInvocationID.xy);
     int width = frame.counts.x;
     int height = frame.counts.y;
-    if (pixel.x >= width || pixel.y >= height)
-        return;
     for (int i = 0; i < TP2_STAT_COUNT; ++i)
         ray_tally[i] = 0u;
-
-    // Sample sample_index of SAMPLES: the pixel center when there is one,
-    // else stratified in the pixel. Each adds its share to the pixel.
     int s = sample_index;
-    vec2 offset = SAMPLES == 1 ? vec2(0.5) : lattice2(s, SAMPLES, frame.sampling.x, random2(pixel, 0u));
-    real x = (2.0 * (real(pixel.x) + real(offset.x))) / real(width) - 1.0;
-    real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
-    rvec3 origin, dir;
-    camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
-    vec3 share = trace(origin, dir, random2(pixel, uint(2 * s + 2))) / float(SAMPLES);
-    // pixels[] holds one band of whole rows, from row tile_origin.y on.
-    int index = int(gl_GlobalInvocationID.y) * width + pixel.x;
-    pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
-    ray_tally[TP2_STAT_CAMERA] = 1u;
+    ivec2 pixel;
+    int entry = -1; // the saved walk this invocation goes on with
+    if (pass_kind == TP2_PASS_CONTINUE) {
+        entry = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
+        if (entry >= min(int(counters[TP2_COUNTER_WALKS]), walk_capacity) ||
+            walks[entry].where.z < 0)
+            return;
+        pixel = walk_load(entry);
+    } else {
+        pixel = tile_origin + ivec2(gl_GlobalInvocationID.xy);
+        if (pixel.x >= width || pixel.y >= height)
+            return;
+        if (LOOP_GUARD && started[int(gl_GlobalInvocationID.y) * width + pixel.x] != 0u)
+            return;
+        // Sample s of SAMPLES: the pixel center when there is one, else
+        // stratified in the pixel. Each adds its share to the pixel.
+        vec2 offset = SAMPLES == 1 ? vec2(0.5) : lattice2(s, SAMPLES, frame.sampling.x, random2(pixel, 0u));
+        real x = (2.0 * (real(pixel.x) + real(offset.x))) / real(width) - 1.0;
+        real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
+        rvec3 origin, dir;
+        camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
+        walk_start(origin, dir);
+        ray_tally[TP2_STAT_CAMERA] = 1u;
+    }
+    walk_on(pass_rays, random2(pixel, uint(2 * s + 2)));
 
-    if (LOOP_GUARD) { // see TP2_CANARY_STEPS
-        int canary = 0;
-        for (int k = 0; k < frame.sampling.w; ++k)
-            ++canary;
-        if (canary != frame.sampling.w)
-            atomicAdd(cut_short, 1u);
+    bool cut = LOOP_GUARD && was_cut();
+    if (cut) {
+        atomicAdd(counters[TP2_COUNTER_CUT], 1u);
+        if (accept_cut == 0)
+            return;
+        atomicAdd(counters[TP2_COUNTER_LOST], 1u);
+        walk_live = false; // what there is, wrong: tp2 says so
+    }
+    // pixels[] holds one band of whole rows, from row tile_origin.y on.
+    int index = (pixel.y - tile_origin.y) * width + pixel.x;
+    if (!walk_live) {
+        vec3 share = walk_color / float(SAMPLES);
+        pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
+        if (entry >= 0)
+            walks[entry].where.z = -1;
+        else if (LOOP_GUARD)
+            started[index] = 1u;
+    } else {
+        if (entry < 0) {
+            entry = int(atomicAdd(counters[TP2_COUNTER_WALKS], 1u));
+            if (entry >= walk_capacity) { // no room: it starts again later
+                atomicAdd(counters[TP2_COUNTER_WAITING], 1u);
+                return;
+            }
+            started[index] = 1u;
+        }
+        walk_save(entry, pixel);
+        atomicAdd(counters[TP2_COUNTER_UNFINISHED], 1u);
     }
     if (COUNT_RAYS)
-        for (int i = 0; i < TP2_STAT_COUNT; ++i) {
-            // 64-bit counters from 32-bit atomics: carry into the high word.
-            uint before = atomicAdd(ray_counts[2 * i], ray_tally[i]);
-            if (before + ray_tally[i] < before)
-                atomicAdd(ray_counts[2 * i + 1], 1u);
-        }
+        count_rays();
 }

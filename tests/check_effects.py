@@ -161,19 +161,25 @@ def case_arealight_soft_shadow(c):
 
 
 def case_bailout(c):
-    """--bailout W stops rays of weight below W: between two mirrors of kr
-    0.5 the center pixel sums 4 reflections (W = 0.1) or 8 (the default
-    1/255) instead of 11 and the gray tail (W = 0, and the double
-    reference)."""
+    """--bailout W prunes a ray of weight below W only while the sample's
+    pruned weights add up to at most W / 2: between two mirrors of kr 0.5
+    the chain of weights 0.5^k stops at the first one at most W / 2, so the
+    center pixel sums 5 reflections (W = 0.1: 0.5^5 <= 0.05) or 9 (the
+    default 1/255: 0.5^9 <= 1/510) instead of 11 and the gray tail (W = 0,
+    and the double reference); what is lost is at most W / 2 times the
+    radiance the pruned ray would bring."""
     mirrors = (CAMERA + "1\n0 0 0 0.2 0.2 0.2 0 0 0\n1\nsolid 1 1 1\n1\n1 0 0 1 0.5 0 0\n"
                "2\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n")
     exact = 0.2 * sum(0.5 ** k for k in range(11)) + 0.5 ** 11 * 0.5
-    pruned = 0.2 * sum(0.5 ** k for k in range(4))  # 0.5^4 < 0.1
-    default = 0.2 * sum(0.5 ** k for k in range(8))  # 0.5^8 < 1/255
-    for options, want in (([], default), (["--bailout", "0"], exact),
-                          (["--precision", "double"], exact), (["--bailout", "0.1"], pruned)):
+    pruned = 0.2 * sum(0.5 ** k for k in range(5))
+    default = 0.2 * sum(0.5 ** k for k in range(9))
+    for options, want, w in (([], default, 1 / 255), (["--bailout", "0"], exact, 0),
+                             (["--precision", "double"], exact, 0),
+                             (["--bailout", "0.1"], pruned, 0.1)):
         center = c.image(mirrors, (5, 5), options, name="b")[2][2]
         c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
+        # No ray here brings more than 0.5 (the gray past the depth limit).
+        c.expect(exact - center[0] <= w / 2 * 0.5 + TOL, f"{options}: error above the bound")
 
 
 def slab_value(z, direction, depth, planes=(-3, -1, 1, 3)):
@@ -203,25 +209,49 @@ def case_many_samples_full_trees(c):
         c.expect(approx(center, (want,) * 3, 1e-4), f"spp {spp}: center {center}, want {want}")
 
 
-def case_loop_limit_warning(c):
-    """A sample whose unpruned tree needs more loop iterations than lavapipe
+def deep_scene(c):
+    """A scene whose unpruned trees need more loop iterations than lavapipe
     allows one invocation (about 460 rays, each testing 84 objects for
-    itself and for 8 lights, in a sphere loop: --bvh-min keeps the BVH out)
-    is reported, not silently cut; the pruned default stays quiet."""
+    itself and for 8 lights, in a plain loop: --bvh-min keeps the BVH out)."""
     spheres = "".join(f"0 0 sphere {100 + 3 * i} 0 0 1\n" for i in range(80))
     lights = "".join(f"{x} {y} {z} 0.1 0.1 0.1 1 0 0\n"
                      for x in (-1, 1) for y in (-1, 1) for z in (-0.5, 0.5))
     text = (CAMERA + "9\n0 0 0 0.2 0.2 0.2 0 0 0\n" + lights + "1\nsolid 1 1 1\n"
             "1\n1 0.1 0 1 0.5 0.5 1\n84\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n"
             "0 0 plane 0 0 1 3\n0 0 plane 0 0 -1 3\n" + spheres)
-    scene = scene_file(c.tmp, "deep.txt", text)
-    out = os.path.join(c.tmp, "deep.ppm")
-    status, _, err = run(c.tp2, ["--bvh-min", "1000", "--bailout", "0", scene, out, "8", "8"])
+    return scene_file(c.tmp, "deep.txt", text)
+
+
+def case_walks_go_on(c):
+    """Walks too long for one lavapipe invocation go on across passes (one
+    ray per pass, a few, or as many as fit) and give the same image to the
+    bit, with no warning; --stats shows the extra passes."""
+    scene = deep_scene(c)
+    images = []
+    for rays in ("1", "7", "256"):
+        out = os.path.join(c.tmp, f"deep-{rays}.pfm")
+        status, _, err = run(c.tp2, ["--stats", "--bvh-min", "1000", "--bailout", "0",
+                                     scene, out, "8", "8"], {"TP2_PASS_RAYS": rays})
+        c.require(status == 0 and "warning" not in err, f"{rays} rays per pass: {status} {err!r}")
+        passes = [int(l.split()[2]) for l in err.splitlines() if l.startswith("tp2: passes")]
+        c.expect(passes and passes[0] > 1, f"{rays} rays per pass: passes {passes}")
+        images.append(read_pfm(out)[2])
+    c.expect(images[0] == images[1] == images[2], "the images depend on the rays per pass")
+
+
+def case_loop_limit_warning(c):
+    """A single ray that needs more than lavapipe allows one invocation (it
+    meets 20 polyhedra of 4096 faces: 81920 face tests) cannot be split:
+    tp2 writes the image and says how many samples are wrong."""
+    face = "".join(f"{math.cos(k):.6f} {math.sin(k):.6f} 0.5 -1\n" for k in range(4096))
+    text = (CAMERA + "1\n0 0 0 1 1 1 0 0 0\n1\nsolid 1 1 1\n" + AMBIENT_ONLY + "20\n" +
+            "".join("0 0 polyhedron 4096\n" + face for _ in range(20)))
+    scene = scene_file(c.tmp, "faces.txt", text)
+    out = os.path.join(c.tmp, "faces.ppm")
+    status, _, err = run(c.tp2, [scene, out, "2", "2"])
     c.expect(status == 0 and os.path.exists(out), f"exit {status}: {err!r}")
-    c.expect(err.startswith("tp2: warning: ") and "may have cut them short" in err,
-             f"no loop-limit warning: {err!r}")
-    status, _, err = run(c.tp2, ["--bvh-min", "1000", scene, out, "8", "8"])
-    c.expect(status == 0 and err == "", f"pruned: exit {status}, stderr {err!r}")
+    c.expect(err.startswith("tp2: warning: 4 pixel samples needed more than") and
+             "so they are wrong" in err, f"no loop-limit warning: {err!r}")
 
 
 MILLION_SCENE = """0 2.5 6

@@ -292,6 +292,8 @@ struct buffer {
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
 #define OBJECT_FIELDS(F, T) F(T, a) F(T, b) F(T, c) F(T, ids)
 #define BVH_FIELDS(F, T) F(T, lo) F(T, first) F(T, hi) F(T, count)
+#define WALK_FIELDS(F, T) F(T, where) F(T, color)
+#define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info)
 
 #define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
 FIELDS(FRAME_FIELDS, gpu_frame_f)
@@ -305,6 +307,9 @@ FIELDS(PIGMENT_FIELDS, gpu_pigment_d)
 FIELDS(FINISH_FIELDS, gpu_finish_d)
 FIELDS(OBJECT_FIELDS, gpu_object_d)
 FIELDS(BVH_FIELDS, bvh_node) /* float bounds in both shaders */
+FIELDS(WALK_FIELDS, gpu_walk)  /* no reals: the same in both */
+FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_f)
+FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_d)
 
 #define BUFFER(block, glsl, T, binding, array)                                \
     {block, glsl, #T, binding, array, sizeof(struct T), _Alignof(struct T),   \
@@ -317,6 +322,8 @@ static const struct buffer float_buffers[] = {
     BUFFER("FinishBuf", "Finish", gpu_finish_f, TP2_BINDING_FINISHES, 1),
     BUFFER("ObjectBuf", "Object", gpu_object_f, TP2_BINDING_OBJECTS, 1),
     BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+    BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
+    BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_f, TP2_BINDING_WALK_RAYS, 1),
 };
 
 static const struct buffer double_buffers[] = {
@@ -326,6 +333,8 @@ static const struct buffer double_buffers[] = {
     BUFFER("FinishBuf", "Finish", gpu_finish_d, TP2_BINDING_FINISHES, 1),
     BUFFER("ObjectBuf", "Object", gpu_object_d, TP2_BINDING_OBJECTS, 1),
     BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+    BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
+    BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_d, TP2_BINDING_WALK_RAYS, 1),
 };
 
 /* The C table itself covers the struct: fields in order, not overlapping,
@@ -445,9 +454,31 @@ static void check_plain_array(const struct spv *m, const char *name, long bindin
            stride, elem_size);
 }
 
+/* Member k of struct def is a fixed array of n uints at byte offset; name
+ * names it in messages. */
+static void check_uint_array(const struct spv *m, uint32_t block, size_t def, uint32_t k,
+                             long n, long offset, const char *name)
+{
+    size_t arr = spv_def(m, m->w[def + 2 + k]);
+    int ok = spv_op(m, arr) == OP_TYPE_ARRAY && spv_wc(m, arr) >= 4;
+    expect(ok, "%s: %s: a fixed-size array", m->label, name);
+    if (!ok)
+        return;
+    enum kind kind = KIND_OTHER;
+    size_t size = spv_type_size(m, m->w[arr + 2], &kind);
+    expect(size == sizeof(uint32_t) && kind == KIND_U32, "%s: %s[]: element is uint", m->label, name);
+    size_t len = spv_def(m, m->w[arr + 3]);
+    long got = spv_op(m, len) == OP_CONSTANT && spv_wc(m, len) >= 4 ? (long)m->w[len + 3] : -1;
+    expect(got == n, "%s: %s[]: %ld elements, want %ld", m->label, name, got, n);
+    long stride = spv_decoration(m, m->w[def + 2 + k], DEC_ARRAY_STRIDE);
+    expect(stride == (long)sizeof(uint32_t), "%s: %s[]: ArrayStride %ld", m->label, name, stride);
+    long off = spv_member_decoration(m, block, k, DEC_OFFSET);
+    expect(off == offset, "%s: %s: Offset %ld, want %ld", m->label, name, off, offset);
+}
+
 /* The stats buffer: uint ray_counts[2 * TP2_STAT_COUNT], then uint
- * cut_short, at TP2_BINDING_STATS, read by render.c as that many
- * uint32_t words. */
+ * counters[TP2_COUNTER_COUNT], at TP2_BINDING_STATS, read by render.c as
+ * that many uint32_t words. */
 static void check_stats(const struct spv *m)
 {
     uint32_t block = 0;
@@ -460,30 +491,13 @@ static void check_stats(const struct spv *m)
     expect(binding == TP2_BINDING_STATS, "%s: " "buffer StatsBuf: Binding %ld, want %d", m->label, binding, TP2_BINDING_STATS);
     expect(spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0, "%s: " "buffer StatsBuf: DescriptorSet 0", m->label);
     size_t def = spv_def(m, block);
-    size_t arr = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 4
-                     ? spv_def(m, m->w[def + 2])
-                     : 0;
-    int ok = spv_op(m, arr) == OP_TYPE_ARRAY && spv_wc(m, arr) >= 4;
-    expect(ok, "%s: " "buffer StatsBuf: a fixed-size array, then one more member", m->label);
+    int ok = spv_op(m, def) == OP_TYPE_STRUCT && spv_wc(m, def) == 4;
+    expect(ok, "%s: buffer StatsBuf: two members", m->label);
     if (!ok)
         return;
-    enum kind last_kind = KIND_OTHER;
-    size_t last_size = spv_type_size(m, m->w[def + 3], &last_kind);
-    expect(last_size == sizeof(uint32_t) && last_kind == KIND_U32, "%s: " "cut_short: a uint", m->label);
-    long last_offset = spv_member_decoration(m, block, 1, DEC_OFFSET);
-    expect(last_offset == (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "%s: " "cut_short: Offset %ld, want %zu (the word after ray_counts)", m->label,
-          last_offset, 2 * TP2_STAT_COUNT * sizeof(uint32_t));
-    enum kind kind = KIND_OTHER;
-    size_t size = spv_type_size(m, m->w[arr + 2], &kind);
-    expect(size == sizeof(uint32_t) && kind == KIND_U32, "%s: " "ray_counts[]: element is uint", m->label);
-    size_t len = spv_def(m, m->w[arr + 3]);
-    long n = spv_op(m, len) == OP_CONSTANT && spv_wc(m, len) >= 4
-                 ? (long)m->w[len + 3]
-                 : -1;
-    expect(n == 2 * TP2_STAT_COUNT, "%s: " "ray_counts[]: %ld elements, want %d", m->label,
-          n, 2 * TP2_STAT_COUNT);
-    long stride = spv_decoration(m, m->w[def + 2], DEC_ARRAY_STRIDE);
-    expect(stride == (long)sizeof(uint32_t), "%s: " "ray_counts[]: ArrayStride %ld, want %zu", m->label, stride, sizeof(uint32_t));
+    check_uint_array(m, block, def, 0, 2 * TP2_STAT_COUNT, 0, "ray_counts");
+    check_uint_array(m, block, def, 1, TP2_COUNTER_COUNT,
+                     (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "counters");
 }
 
 /* Every storage buffer in the module: bindings exactly 0 .. COUNT - 1,
@@ -516,7 +530,9 @@ static void check_bindings(void)
                       TP2_BINDING_PIGMENTS, TP2_BINDING_FINISHES,
                       TP2_BINDING_OBJECTS,  TP2_BINDING_BVH,
                       TP2_BINDING_EXTRA,    TP2_BINDING_TEXELS,
-                      TP2_BINDING_IMAGE,    TP2_BINDING_STATS};
+                      TP2_BINDING_IMAGE,    TP2_BINDING_STATS,
+                      TP2_BINDING_STARTED,  TP2_BINDING_WALKS,
+                      TP2_BINDING_WALK_RAYS};
     size_t n = sizeof b / sizeof b[0];
     int ok = n == TP2_BINDING_COUNT;
     for (size_t i = 0; i < n; i++) {
@@ -539,6 +555,7 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
     check_plain_array(m, "ImageBuf", TP2_BINDING_IMAGE, 4 * sizeof(float), KIND_F32, "vec4");
     check_plain_array(m, "ExtraBuf", TP2_BINDING_EXTRA, 4 * real_size, real_kind, "rvec4");
     check_plain_array(m, "TexelBuf", TP2_BINDING_TEXELS, sizeof(uint32_t), KIND_U32, "uint");
+    check_plain_array(m, "StartedBuf", TP2_BINDING_STARTED, sizeof(uint32_t), KIND_U32, "uint");
     check_stats(m);
     check_binding_set(m);
 }
