@@ -12,7 +12,9 @@
 #include "progress.h"
 #include "scene_pack.h"
 #include "tp2_shared.h"
+#include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
+#include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #include "vk_buffer.h"
 #include "vk_check.h"
@@ -55,7 +57,11 @@ struct renderer {
     VkPipelineLayout pipeline_layout;
     VkShaderModule shader;
     VkPipelineCache cache;
-    VkPipeline pipeline;
+    VkPipeline pipelines[TP2_WALK_KINDS]; /* by TP2_WALK_*, made when needed */
+    struct scene_features features;
+    bool count_rays;
+    bool walking;         /* a whole-tree pass was cut: walks go in passes */
+    double pipeline_time; /* seconds spent making pipelines */
     VkDescriptorPool pool;
     VkDescriptorSet set;
     VkCommandPool command_pool;
@@ -78,11 +84,9 @@ struct renderer {
 struct tile_push {
     int32_t origin[2];
     int32_t sample;
-    int32_t pass_kind;
     int32_t pass_rays;
     int32_t walk_capacity;
     int32_t accept_cut;
-    int32_t pad;
 };
 
 /* The band buffer's byte limit on this device: TP2_BAND_BYTES, or less
@@ -156,14 +160,16 @@ static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
  * (VkBool32) and ints are all 32-bit words. */
 static void spec_values(const struct scene_features *f, bool count_rays,
-                        bool loop_guard, int32_t v[TP2_SPEC_COUNT],
+                        bool loop_guard, int walk, int32_t v[TP2_SPEC_COUNT],
                         VkSpecializationMapEntry map[TP2_SPEC_COUNT])
 {
+    v[TP2_SPEC_WALK] = walk;
     v[TP2_SPEC_REFLECT] = f->reflect;
     v[TP2_SPEC_REFRACT] = f->refract;
     v[TP2_SPEC_PIGMENTS] = f->pigments;
     v[TP2_SPEC_SHAPES] = f->shapes;
-    v[TP2_SPEC_ONLY_SHAPE] = f->only_shape;
+    v[TP2_SPEC_BOUNDED_SHAPE] = f->bounded_shape;
+    v[TP2_SPEC_UNBOUNDED_SHAPE] = f->unbounded_shape;
     v[TP2_SPEC_FOG] = f->fog;
     v[TP2_SPEC_LENS] = f->lens;
     v[TP2_SPEC_AREA] = f->area;
@@ -181,8 +187,29 @@ static bool needs_loop_guard(const struct vkc *vk)
     return vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
-static int create_pipeline(struct renderer *r, bool use_double,
-                           const struct scene_features *features, bool count_rays)
+/* Whether the scene uses a kind only the curved builds have. */
+static bool curved_kinds(const struct scene_features *f)
+{
+    return (f->shapes & (1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE |
+                         1 << TP2_SHAPE_TORUS | 1 << TP2_SHAPE_QUADRIC)) != 0;
+}
+
+/* The SPIR-V build for the precision and kinds (CMakeLists.txt). */
+static const uint32_t *spirv_code(bool use_double, bool curved)
+{
+    return use_double ? (curved ? tp2_trace_double_curved : tp2_trace_double)
+                      : (curved ? tp2_trace_float_curved : tp2_trace_float);
+}
+
+static size_t spirv_size(bool use_double, bool curved)
+{
+    return use_double ? (curved ? sizeof tp2_trace_double_curved : sizeof tp2_trace_double)
+                      : (curved ? sizeof tp2_trace_float_curved : sizeof tp2_trace_float);
+}
+
+/* The descriptor set layout, the pipeline layout and the shader module of
+ * the precision and kinds the scene needs. */
+static int create_layouts(struct renderer *r, bool use_double)
 {
     VkDescriptorSetLayoutBinding bindings[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
@@ -212,15 +239,26 @@ static int create_pipeline(struct renderer *r, bool use_double,
     };
     TP2_VK_TRY(vkCreatePipelineLayout(r->vk.device, &layout_info, NULL,
                                       &r->pipeline_layout));
+    bool curved = curved_kinds(&r->features);
     VkShaderModuleCreateInfo module_info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = use_double ? sizeof tp2_trace_double : sizeof tp2_trace_float,
-        .pCode = use_double ? tp2_trace_double : tp2_trace_float,
+        .codeSize = spirv_size(use_double, curved),
+        .pCode = spirv_code(use_double, curved),
     };
     TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
+    return 0;
+}
+
+/* The pipeline for walks of kind `walk` (TP2_WALK_*), made when first
+ * needed: most scenes only ever need TP2_WALK_WHOLE. */
+static int need_pipeline(struct renderer *r, int walk)
+{
+    if (r->pipelines[walk])
+        return 0;
+    double t0 = clock_seconds();
     int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(features, count_rays, r->loop_guard, values, map);
+    spec_values(&r->features, r->count_rays, r->loop_guard, walk, values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
@@ -241,9 +279,10 @@ static int create_pipeline(struct renderer *r, bool use_double,
     if (pipeline_cache_load(&r->vk, &r->cache) != 0)
         return -1;
     TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, r->cache, 1, &info, NULL,
-                                        &r->pipeline));
+                                        &r->pipelines[walk]));
     pipeline_cache_save(&r->vk, r->cache);
     r->cache = VK_NULL_HANDLE;
+    r->pipeline_time += clock_seconds() - t0;
     return 0;
 }
 
@@ -308,15 +347,17 @@ static int create_commands(struct renderer *r)
     return 0;
 }
 
-/* Records and submits one pass (TP2_PASS_*) of sample `sample`'s walks
- * over the band of rows [y, y + rows): a TP2_PASS_START dispatch covers
- * the band, a TP2_PASS_CONTINUE one the `walks` saved walks. `clear`: the
+/* Records and submits one pass (TP2_WALK_*) of sample `sample`'s walks
+ * over the band of rows [y, y + rows): a whole-tree or start dispatch
+ * covers the band, a continue one the `walks` saved walks. `clear`: the
  * sample's first pass, which clears the band's started flags first. */
 static int submit_pass(struct renderer *r, int width, int y, int rows, int sample, int kind,
                        uint32_t walks, bool clear)
 {
-    struct tile_push push = {{0, y}, sample, kind, r->pass_rays, r->walk_capacity,
-                             r->pass_rays == 1, 0};
+    struct tile_push push = {{0, y}, sample, r->pass_rays, r->walk_capacity,
+                             r->pass_rays == 1};
+    if (need_pipeline(r, kind) != 0)
+        return -1;
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
         .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
@@ -334,13 +375,13 @@ static int submit_pass(struct renderer *r, int width, int y, int rows, int sampl
                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, NULL,
                              0, NULL);
     }
-    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline);
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipelines[kind]);
     vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                             r->pipeline_layout, 0, 1, &r->set, 0, NULL);
     vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                        0, sizeof push, &push);
     uint32_t group = TP2_GROUP_X * TP2_GROUP_Y;
-    if (kind == TP2_PASS_START)
+    if (kind != TP2_WALK_CONTINUE)
         vkCmdDispatch(r->cmd, (uint32_t)(width + TP2_GROUP_X - 1) / TP2_GROUP_X,
                       (uint32_t)(rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
     else
@@ -435,7 +476,7 @@ static int render_band_sample(struct renderer *r, int width, int y, int rows, in
                               const struct writing *w, uint32_t *passes)
 {
     uint32_t *count = (uint32_t *)r->buffers[TP2_BINDING_STATS].mapped + 2 * TP2_STAT_COUNT;
-    int kind = TP2_PASS_START;
+    int kind = r->walking ? TP2_WALK_START : TP2_WALK_WHOLE;
     bool first = true;
     bool waiting = false; /* walks found no room: their pixels start again */
     count[TP2_COUNTER_WALKS] = 0;
@@ -450,17 +491,24 @@ static int render_band_sample(struct renderer *r, int width, int y, int rows, in
             return -1;
         first = false;
         ++*passes;
+        if (kind == TP2_WALK_WHOLE) { /* cut trees: in walks from now on */
+            if (count[TP2_COUNTER_CUT] == 0)
+                return 0;
+            r->walking = true;
+            kind = TP2_WALK_START;
+            continue;
+        }
         if (count[TP2_COUNTER_CUT] > 0 && r->pass_rays > 1) {
             r->pass_rays /= 2; /* the same pass again: cut walks are as they were */
             continue;
         }
-        if (kind == TP2_PASS_START)
+        if (kind == TP2_WALK_START)
             waiting = count[TP2_COUNTER_WAITING] > 0;
         if (count[TP2_COUNTER_WALKS] > 0 &&
-            (kind == TP2_PASS_START || count[TP2_COUNTER_UNFINISHED] > 0)) {
-            kind = TP2_PASS_CONTINUE;
+            (kind == TP2_WALK_START || count[TP2_COUNTER_UNFINISHED] > 0)) {
+            kind = TP2_WALK_CONTINUE;
         } else if (waiting) { /* every saved walk is done: room for the rest */
-            kind = TP2_PASS_START;
+            kind = TP2_WALK_START;
             count[TP2_COUNTER_WALKS] = 0;
         } else {
             return 0;
@@ -519,7 +567,8 @@ static void renderer_destroy(struct renderer *r)
         vkDestroyFence(d, r->fence, NULL);
         vkDestroyCommandPool(d, r->command_pool, NULL);
         vkDestroyDescriptorPool(d, r->pool, NULL);
-        vkDestroyPipeline(d, r->pipeline, NULL);
+        for (int k = 0; k < TP2_WALK_KINDS; k++)
+            vkDestroyPipeline(d, r->pipelines[k], NULL);
         vkDestroyPipelineCache(d, r->cache, NULL);
         vkDestroyShaderModule(d, r->shader, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
@@ -533,16 +582,21 @@ static void renderer_destroy(struct renderer *r)
 
 /* Rays per walk per pass to begin with: TP2_CPU_PASS_RAYS on CPU devices,
  * a whole tree elsewhere. The environment variable TP2_PASS_RAYS sets it
- * on CPU devices, so that tests can make walks go on across many passes. */
-static int pass_rays(bool loop_guard)
+ * on CPU devices and has walks start in passes at once (not after a cut
+ * whole-tree pass), so that tests can make walks go on across passes. */
+static int pass_rays(bool loop_guard, bool *walking)
 {
     const char *env = getenv("TP2_PASS_RAYS");
     char *end;
     long v = env ? strtol(env, &end, 10) : 0;
+    *walking = false;
     if (!loop_guard)
         return TP2_MAX_RAYS;
-    return env && *env >= '1' && *env <= '9' && *end == '\0' && v <= TP2_MAX_RAYS
-               ? (int)v : TP2_CPU_PASS_RAYS;
+    if (env && *env >= '1' && *env <= '9' && *end == '\0' && v <= TP2_MAX_RAYS) {
+        *walking = true;
+        return (int)v;
+    }
+    return TP2_CPU_PASS_RAYS;
 }
 
 /* Even the smallest band (TP2_GROUP_Y rows) must fit the band limit; with
@@ -593,16 +647,19 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     }
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     r.loop_guard = needs_loop_guard(&r.vk);
-    r.pass_rays = pass_rays(r.loop_guard);
+    r.pass_rays = pass_rays(r.loop_guard, &r.walking);
     r.walk_capacity = r.loop_guard ? TP2_WALK_CAPACITY : 1;
     VkDeviceSize band_size = (VkDeviceSize)r.band_rows * opt->width * TP2_PIXEL_BYTES;
     if (create_buffers(&r, &packed, band_size, opt->use_double) != 0)
         goto done;
     double t2 = clock_seconds();
-    if (create_pipeline(&r, opt->use_double, &packed.features, opt->count_rays) != 0 ||
+    r.features = packed.features;
+    r.count_rays = opt->count_rays;
+    if (create_layouts(&r, opt->use_double) != 0 || need_pipeline(&r, TP2_WALK_WHOLE) != 0 ||
         create_descriptors(&r) != 0 || create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
+    double made = r.pipeline_time;
     if (run_bands(&r, opt->width, opt->height, packed.features.samples, opt->progress,
                   on_rows, user, stats) != 0)
         goto done;
@@ -611,7 +668,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = t1 - t0;
     stats->upload = t2 - t1;
-    stats->pipeline = t3 - t2;
+    stats->pipeline = t3 - t2 + (r.pipeline_time - made);
+    stats->render -= r.pipeline_time - made; /* walk pipelines made on the way */
     rc = 0;
 done:
     renderer_destroy(&r);

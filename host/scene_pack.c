@@ -42,6 +42,7 @@ struct layout {
     struct bvh bvh;
     size_t ntexels;
     size_t *texel_offset;     /* per texture: its first texel */
+    int bounded_kinds, unbounded_kinds; /* bit TP2_SHAPE_k: kind k among them */
     int samples;
 };
 
@@ -187,7 +188,6 @@ static struct scene_features scene_features(const struct scene *s, int samples)
         .fog = s->has_fog && s->fog_density > 0,
         .lens = s->has_lens && s->lens_radius > 0,
         .area = s->has_arealight,
-        .only_shape = -1,
         .samples = samples,
     };
     for (size_t i = 0; i < s->nobjects; i++) {
@@ -197,10 +197,16 @@ static struct scene_features scene_features(const struct scene *s, int samples)
         f.pigments |= 1 << pigment_kinds[s->pigments[o->pigment].kind].gpu_kind;
         f.shapes |= 1 << shape_kinds[o->kind].gpu_kind;
     }
-    for (int k = 0; k < 31; k++)
-        if (f.shapes == 1 << k)
-            f.only_shape = k;
     return f;
+}
+
+/* The kind whose bit alone is set in kinds, else -1. */
+static int single_kind(int kinds)
+{
+    for (int k = 0; k < 31; k++)
+        if (kinds == 1 << k)
+            return k;
+    return -1;
 }
 
 /* Slots: every object's primitives, the bounded ones first in the BVH's
@@ -229,10 +235,13 @@ static int layout_objects(const struct scene *s, struct layout *lay)
             size_t count = kind->primitives(p, o->count);
             for (size_t k = 0; k < count; k++) {
                 struct prim_ref ref = {i, k};
-                if (kind->bounds(p, o->count, k, boxes[nb], boxes[nb] + 3))
+                if (kind->bounds(p, o->count, k, boxes[nb], boxes[nb] + 3)) {
                     bounded[nb++] = ref;
-                else
+                    lay->bounded_kinds |= 1 << kind->gpu_kind;
+                } else {
                     lay->slots[--nu] = ref; /* filled from the end */
+                    lay->unbounded_kinds |= 1 << kind->gpu_kind;
+                }
             }
         }
         /* The unbounded came in reverse: restore scene order. */
@@ -304,6 +313,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     int rc = layout_objects(s, &lay);
     if (rc == 0)
         rc = layout_texels(s, &lay);
+    out->features.bounded_shape = single_kind(lay.bounded_kinds);
+    out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
     if (rc == 0)

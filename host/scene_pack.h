@@ -17,7 +17,8 @@ struct scene_features {
     bool reflect, refract, fog, lens, area;
     int pigments;   /* bit TP2_PIGMENT_k: kind k in use */
     int shapes;     /* bit TP2_SHAPE_k: kind k in use */
-    int only_shape; /* the one TP2_SHAPE_* in use, else -1 */
+    int bounded_shape;   /* the one TP2_SHAPE_* of the bounded objects, else -1 */
+    int unbounded_shape; /* ... of the unbounded ones, else -1 */
     bool bvh; /* enough bounded objects that the BVH beats a plain loop */
     int samples;
 };

@@ -21,7 +21,6 @@ struct Start {
 
 const Start NOWHERE = Start(-1, false);
 
-#include "poly.glsl"
 #include "shapes.glsl"
 
 #ifdef TP2_DOUBLE
@@ -53,56 +52,47 @@ rvec3 safe_inverse(rvec3 d)
     return real(1.0) / mix(d, rvec3(tiny), lessThan(abs(d), rvec3(tiny)));
 }
 
-// Offers objects [first, end) to the hit; with any_hit, stops at the
-// first one found.
-void hit_objects(int first, int end, rvec3 o, rvec3 d, Start start, bool any_hit, inout Hit h)
-{
-    for (int i = first; i < end; ++i) {
-        int part;
-        real t = hit_object(i, o, d, i == start.object, start.inward, part);
-        if (t < h.t) {
-            h = Hit(t, i, part);
-            if (any_hit)
-                return;
-        }
-    }
-}
-
 // The nearest object with 0 < t < tmax, or, if any_hit, any one of them,
 // for a ray from o along unit d that starts on `start`. Bounded objects sit
 // in BVH order at the start of objects[], the unbounded ones after them.
 //
-// The walk hands out ranges of objects to test, one at a time: the BVH's
-// leaves as it reaches them, nearest first (or, with few bounded objects,
-// all of them at once: a plain loop is faster then), and last the unbounded
-// ones. A single call of hit_objects serves every range, so each kind's
-// intersection code is compiled once (see trace_step).
+// One loop tests one object per step, and between the ranges of objects
+// to test, walks the BVH to its next leaf (nearest first), the unbounded
+// objects last; with few bounded objects (no BVH: a plain loop is faster)
+// the range is all of them at once and the loop is a plain loop. The
+// object test appears once, so each kind's code is compiled once (see
+// trace_step), and no loop runs inside another.
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
 {
     Hit h = Hit(tmax, -1, 0);
     int bounded = frame.geometry.x;
-    rvec3 inv_d = safe_inverse(d);
+    int total = bounded + frame.geometry.y;
+    rvec3 inv_d = USE_BVH ? safe_inverse(d) : d;
     int stack_node[TP2_BVH_STACK];
     real stack_t[TP2_BVH_STACK];
     int sp = 0;
     int node = USE_BVH && box_entry(nodes[0].lo, nodes[0].hi, o, inv_d, h.t) < NO_HIT ? 0 : -1;
-    int first = 0;
-    int end = USE_BVH ? 0 : bounded; // the range to test next
+    int i = 0; // objects [i, end) come next
+    int end = USE_BVH ? 0 : total;
     bool unbounded_left = true;
-    // Each node is visited, each leaf tested and each pending node popped
-    // at most once, and the unbounded range comes once.
-    int steps = 2 * frame.geometry.z + 4;
+    // Each object is tested once, each node visited and popped at most
+    // once, and the unbounded range is set once.
+    int steps = total + 2 * frame.geometry.z + 2;
     for (int step = 0; step < steps; ++step) {
-        if (first < end) {
-            hit_objects(first, end, o, d, start, any_hit, h);
-            first = end;
-            if (any_hit && h.object >= 0)
-                break;
-        } else if (node >= 0) {
+        if (i < end) {
+            int part;
+            real t = hit_object(i, o, d, i == start.object, start.inward, part);
+            if (t < h.t) {
+                h = Hit(t, i, part);
+                if (any_hit)
+                    break;
+            }
+            ++i;
+        } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out
             BvhNode n = nodes[node];
             node = -1;
             if (n.count > 0) {
-                first = n.first;
+                i = n.first;
                 end = n.first + n.count;
             } else {
                 real tl = box_entry(nodes[n.first].lo, nodes[n.first].hi, o, inv_d, h.t);
@@ -116,13 +106,13 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
                     ++sp;
                 }
             }
-        } else if (sp > 0) { // the nearest pending node, if still closer than the hit
+        } else if (USE_BVH && sp > 0) { // the nearest pending node, if still closer than the hit
             --sp;
             if (stack_t[sp] < h.t)
                 node = stack_node[sp];
-        } else if (unbounded_left) {
-            first = bounded;
-            end = bounded + frame.geometry.y;
+        } else if (USE_BVH && unbounded_left) {
+            i = bounded;
+            end = total;
             unbounded_left = false;
         } else {
             break;

@@ -88,22 +88,21 @@ layout(std430, set = 0, binding = TP2_BINDING_WALKS) buffer WalkBuf { Walk walks
 layout(std430, set = 0, binding = TP2_BINDING_WALK_RAYS) buffer WalkRayBuf { WalkRay saved_rays[]; };
 
 // What this dispatch covers: a band of pixels, which of their samples,
-// which pass, and how many rays a walk may trace in it.
+// and how many rays a walk may trace in it (TP2_WALK_START, _CONTINUE).
 layout(push_constant) uniform Tile {
     ivec2 tile_origin;
     int sample_index;
-    int pass_kind;       // TP2_PASS_*
     int pass_rays;       // rays each walk may trace in this pass
     int walk_capacity;   // walks the walk buffers hold
     int accept_cut;      // 1: pass_rays is 1 and still cut: keep what there is
-    int pad;
 };
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
 layout(constant_id = TP2_SPEC_REFRACT) const bool HAS_REFRACT = true;
 layout(constant_id = TP2_SPEC_PIGMENTS) const int PIGMENT_KINDS = -1;
 layout(constant_id = TP2_SPEC_SHAPES) const int SHAPE_KINDS = -1;
-layout(constant_id = TP2_SPEC_ONLY_SHAPE) const int ONLY_SHAPE = -1;
+layout(constant_id = TP2_SPEC_BOUNDED_SHAPE) const int BOUNDED_SHAPE = -1;
+layout(constant_id = TP2_SPEC_UNBOUNDED_SHAPE) const int UNBOUNDED_SHAPE = -1;
 layout(constant_id = TP2_SPEC_FOG) const bool HAS_FOG = false;
 layout(constant_id = TP2_SPEC_LENS) const bool HAS_LENS = false;
 layout(constant_id = TP2_SPEC_AREA) const bool HAS_AREA = false;
@@ -111,6 +110,7 @@ layout(constant_id = TP2_SPEC_STATS) const bool COUNT_RAYS = false;
 layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
 layout(constant_id = TP2_SPEC_BVH) const bool USE_BVH = true;
 layout(constant_id = TP2_SPEC_LOOP_GUARD) const bool LOOP_GUARD = false;
+layout(constant_id = TP2_SPEC_WALK) const int WALK = TP2_WALK_WHOLE;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
 // TP2_SHAPE_*): code for kinds it does not use is compiled out.

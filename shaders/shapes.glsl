@@ -202,6 +202,9 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
     scale = max(max_abs(p), max(max_abs(objects[i].a.xyz), max_abs(objects[i].b.xyz)));
 }
 
+#ifdef TP2_CURVED // the build with the curved kinds (see CMakeLists.txt)
+#include "poly.glsl"
+
 // ---- cylinder: a = base center, radius; b = unit axis, length -----------
 // ---- cone: the same with a.w = r0 at the base and c.x = r1 at the top ----
 // Parts: 0 the side, 1 the base cap, 2 the top cap.
@@ -403,6 +406,8 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
     scale = max_abs(p);
 }
 
+#endif // TP2_CURVED
+
 // ---- triangle: a, b, c = corners, unit normal in their w ---------------
 
 // Watertight (Woop, Benthin and Wald 2013): the ray becomes the z axis by
@@ -469,10 +474,16 @@ void surface_triangle(int i, rvec3 o, rvec3 d, inout rvec3 p, out rvec3 n, out r
 
 // ---- by kind -----------------------------------------------------------
 
-// Object i's kind; a constant when the scene has one kind only.
+// Object i's kind; a constant when the bounded objects (those before
+// frame.geometry.x) are all of one kind, and the unbounded ones too: the
+// kind is then not loaded for every object a ray meets.
 int shape_of(int i)
 {
-    return ONLY_SHAPE >= 0 ? ONLY_SHAPE : objects[i].ids.x;
+    if (BOUNDED_SHAPE >= 0 && (UNBOUNDED_SHAPE >= 0 || i < frame.geometry.x))
+        return i < frame.geometry.x ? BOUNDED_SHAPE : UNBOUNDED_SHAPE;
+    if (UNBOUNDED_SHAPE >= 0 && i >= frame.geometry.x)
+        return UNBOUNDED_SHAPE;
+    return objects[i].ids.x;
 }
 
 // Object i's nearest t > 0 and part (see the top of this file).
@@ -490,6 +501,7 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
         return hit_box(i, o, d, on, inward, part);
     if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
         return hit_polyhedron(i, o, d, on, inward, part);
+#ifdef TP2_CURVED
     if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
         (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
         return hit_tapered(i, top_radius(i, kind), o, d, on, inward, part);
@@ -497,6 +509,7 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
         return hit_torus(i, o, d, on);
     if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC)
         return hit_quadric(i, o, d, on);
+#endif
     return NO_HIT;
 }
 
@@ -517,6 +530,7 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
         surface_box(i, part, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
         surface_polyhedron(i, part, p, n, scale);
+#ifdef TP2_CURVED
     else if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
              (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
         surface_tapered(i, top_radius(i, kind), part, p, n, scale);
@@ -524,6 +538,7 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
         surface_torus(i, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC)
         surface_quadric(i, d, p, n, scale);
+#endif
     else {
         n = -d;
         scale = max_abs(p);

@@ -28,7 +28,7 @@
 #define TP2_SPEC_REFRACT 1    /* bool: some finish in use has kt > 0 */
 #define TP2_SPEC_PIGMENTS 2   /* int: bit k set when TP2_PIGMENT_k is in use */
 #define TP2_SPEC_SHAPES 3     /* int: bit k set when TP2_SHAPE_k is in use */
-#define TP2_SPEC_ONLY_SHAPE 4 /* int: the one TP2_SHAPE_* in use, else -1 */
+#define TP2_SPEC_BOUNDED_SHAPE 4 /* int: the one TP2_SHAPE_* of the bounded objects, else -1 */
 #define TP2_SPEC_FOG 5        /* bool: fog directive */
 #define TP2_SPEC_LENS 6       /* bool: lens directive */
 #define TP2_SPEC_AREA 7       /* bool: arealight directive */
@@ -36,7 +36,9 @@
 #define TP2_SPEC_SAMPLES 9    /* int: samples per pixel */
 #define TP2_SPEC_BVH 10       /* bool: bounded objects through the BVH, else a loop */
 #define TP2_SPEC_LOOP_GUARD 11 /* bool: detect lavapipe's loop limit */
-#define TP2_SPEC_COUNT 12
+#define TP2_SPEC_UNBOUNDED_SHAPE 12 /* int: the one TP2_SHAPE_* of the unbounded ones, else -1 */
+#define TP2_SPEC_WALK 13      /* int: TP2_WALK_*, what a pass does with walks */
+#define TP2_SPEC_COUNT 14
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0
@@ -48,13 +50,13 @@
 /* lavapipe ends all loops of a shader invocation (a SIMD vector of lanes)
  * after 65535 iterations in total, silently (Mesa's gallivm,
  * LP_MAX_TGSI_LOOP_ITERATIONS): a deep ray tree, or a ray meeting many
- * objects, needs more. So on CPU devices a pixel sample's walk through its
- * ray tree runs in passes of at most a given number of rays; a walk that
- * has more to do saves its state and goes on in the next pass. Each
- * invocation ends with a loop of TP2_CANARY_STEPS iterations (a count read
- * from the frame, so no compiler can unroll it): if it stops early, the
- * invocation was cut, writes nothing, and its pass is run again with
- * fewer rays. */
+ * objects, needs more. On CPU devices each invocation ends with a loop of
+ * TP2_CANARY_STEPS iterations (a count read from the frame, so no
+ * compiler can unroll it): if it stops early, the invocation was cut and
+ * writes nothing. Its pixel sample is then traced again in passes of at
+ * most a given number of rays (TP2_WALK_*): a walk that has more to do
+ * saves its state and goes on in the next pass, and a pass that is cut is
+ * run again with fewer rays. */
 #define TP2_CANARY_STEPS 2
 
 /* Counters in the stats buffer, after the ray counts. */
@@ -65,9 +67,14 @@
 #define TP2_COUNTER_LOST 4       /* samples cut even one ray at a time */
 #define TP2_COUNTER_COUNT 5
 
-/* Passes: start the walks of a band's pixels, or go on with saved ones. */
-#define TP2_PASS_START 0
-#define TP2_PASS_CONTINUE 1
+/* Passes, each a pipeline of its own (TP2_SPEC_WALK): whole trees in one
+ * go, as GPUs always do and CPU devices first try; else walks started
+ * with at most a number of rays, and saved ones gone on with. The walk
+ * pipelines are made only for scenes whose trees lavapipe cut. */
+#define TP2_WALK_WHOLE 0
+#define TP2_WALK_START 1
+#define TP2_WALK_CONTINUE 2
+#define TP2_WALK_KINDS 3
 
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32

@@ -70,75 +70,58 @@ bool traced(float w, inout float budget)
 
 // Traces one ray: adds what it sees to color and returns how many
 // children it spawns (0 to 2), the first in `first`, the other in `second`.
-//
-// Query 0 is the ray itself; queries 1.. are its hit's shadow rays, one
-// per light sample. One call of trace_scene serves them all, so the
-// intersection code of every kind is compiled once: drivers inline each
-// call, and compile time grows with the copies.
+// (trace_scene is called twice, for the ray and for shadow rays: each call
+// is inlined whole, which costs compile time, but one call serving both
+// was 25% slower on lavapipe.)
 int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, out Ray first,
                out Ray second)
 {
     first = second = ray;
     vec3 gray = frame.background.rgb;
     float weight = ray.weight;
-    Hit h;
+    Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false);
+    if (h.object < 0) {
+        color += weight * (HAS_FOG ? frame.fog.rgb : gray);
+        return 0;
+    }
+    if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
+        float keep = exp(-frame.fog.w * float(h.t));
+        color += weight * (1.0 - keep) * frame.fog.rgb;
+        weight *= keep;
+    }
     Shading sh;
     rvec3 n;
-    bool entering;
-    rvec3 offset;
-    vec3 local = vec3(0.0);
-    int queries = 1;
-    for (int q = 0; q < queries; ++q) {
-        rvec3 o = ray.origin;
-        rvec3 d = ray.dir;
-        real tmax = NO_HIT;
-        Start start = ray.start;
-        vec3 lit = vec3(0.0);
-        if (q > 0) {
-            if (!light_ray(sh, q - 1, area_shift, d, tmax, lit))
-                continue;
-            o = sh.origin;
-            start = sh.start;
-            ++ray_tally[TP2_STAT_SHADOW];
-        }
-        Hit found = trace_scene(o, d, start, tmax, q > 0);
-        if (q > 0) {
-            if (found.object < 0)
-                local += lit;
+    real scale;
+    surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale);
+    bool entering = dot(ray.dir, n) < 0.0;
+    rvec3 nf = entering ? n : -n;
+    rvec3 offset = nf * (scale * TP2_REL_EPS);
+    // Rays leaving on the incoming side start here, going along nf: into
+    // the object when the ray came from inside.
+    rvec3 outside = sh.p + offset;
+    Start back = Start(h.object, !entering);
+    sh.nf = nf;
+    sh.view = -ray.dir;
+    sh.origin = outside;
+    sh.start = back;
+    ivec4 ids = objects[h.object].ids;
+    Finish fin = finishes[ids.z];
+    sh.fin = fin;
+    sh.pig = pigment_color(ids.y, sh.p);
+    vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;
+    int samples = light_samples(fin);
+    for (int j = 0; j < samples; ++j) {
+        rvec3 d;
+        real dist;
+        vec3 lit;
+        if (!light_ray(sh, j, area_shift, d, dist, lit))
             continue;
-        }
-        h = found;
-        if (h.object < 0) {
-            color += weight * (HAS_FOG ? frame.fog.rgb : gray);
-            return 0;
-        }
-        if (HAS_FOG) { // SPEC 3: the segment keeps exp(-density t) of its color
-            float keep = exp(-frame.fog.w * float(h.t));
-            color += weight * (1.0 - keep) * frame.fog.rgb;
-            weight *= keep;
-        }
-        real scale;
-        surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale);
-        entering = dot(ray.dir, n) < 0.0;
-        sh.nf = entering ? n : -n;
-        sh.view = -ray.dir;
-        offset = sh.nf * (scale * TP2_REL_EPS);
-        // Rays leaving on the incoming side start here, going along nf:
-        // into the object when the ray came from inside.
-        sh.origin = sh.p + offset;
-        sh.start = Start(h.object, !entering);
-        ivec4 ids = objects[h.object].ids;
-        sh.fin = finishes[ids.z];
-        sh.pig = pigment_color(ids.y, sh.p);
-        local = sh.fin.phong.x * frame.ambient.rgb * sh.pig;
-        queries = 1 + light_samples(sh.fin);
+        ++ray_tally[TP2_STAT_SHADOW];
+        if (trace_scene(outside, d, back, dist, true).object < 0)
+            local += lit;
     }
     color += weight * local;
     rvec3 p = sh.p;
-    rvec3 nf = sh.nf;
-    rvec3 outside = sh.origin;
-    Start back = sh.start;
-    Finish fin = sh.fin;
 
     float kr = HAS_REFLECT ? fin.optics.x : 0.0;
     float kt = HAS_REFRACT ? fin.optics.y : 0.0;
@@ -177,46 +160,18 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
     return children;
 }
 
-// A pixel sample's walk through its ray tree: it follows each ray's first
+// A pixel sample's walk through its ray tree follows each ray's first
 // child at once and parks the second, so the stack is only touched where
-// the tree branches. Global, so that passes can save and resume it.
-Ray walk_ray;                    // the ray to trace next, if live
-Ray walk_pending[STACK_SIZE];    // rays parked
-int walk_sp;                     // how many
-int walk_traced;                 // rays traced so far
-bool walk_live;
-vec3 walk_color;                 // what the rays traced so far add
-float walk_budget;               // pruning budget left (see traced())
-
-void walk_start(rvec3 eye, rvec3 dir)
-{
-    walk_ray = Ray(eye, dir, NOWHERE, 1.0, 0);
-    walk_sp = 0;
-    walk_traced = 0;
-    walk_live = true;
-    walk_color = vec3(0.0);
-    walk_budget = 0.5 * frame.limits.x;
-}
-
-// Traces at most `rays` more rays of the walk.
-void walk_on(int rays, vec2 area_shift)
-{
-    for (int i = 0; i < rays && walk_live && walk_traced < MAX_RAYS; ++i) {
-        Ray first, second;
-        int children = trace_step(walk_ray, area_shift, walk_color, walk_budget, first, second);
-        ++walk_traced;
-        if (children == 2 && walk_sp < STACK_SIZE)
-            walk_pending[walk_sp++] = second;
-        if (children > 0)
-            walk_ray = first;
-        else if (walk_sp > 0)
-            walk_ray = walk_pending[--walk_sp];
-        else
-            walk_live = false;
-    }
-    if (walk_traced >= MAX_RAYS) // cannot happen: a full tree has MAX_RAYS rays
-        walk_live = false;
-}
+// the tree branches. Its state is a struct of locals, not globals:
+// lavapipe keeps globals in memory (measured: 15-20% of the render time).
+struct Walk_ {
+    Ray ray;         // the ray to trace next, if live
+    int sp;          // rays parked in `pending`
+    int traced;      // rays traced so far
+    bool live;
+    vec3 color;      // what the rays traced so far add
+    float budget;    // pruning budget left (see traced())
+};
 
 WalkRay packed_ray(Ray r)
 {
@@ -228,31 +183,6 @@ Ray unpacked_ray(WalkRay w)
 {
     return Ray(w.origin.xyz, w.dir.xyz, Start(w.info.x, w.info.y != 0), float(w.origin.w),
                w.info.z);
-}
-
-void walk_save(int entry, ivec2 pixel)
-{
-    walks[entry] = Walk(ivec4(pixel, walk_sp, walk_traced), vec4(walk_color, walk_budget));
-    int base = entry * TP2_WALK_RAYS;
-    saved_rays[base] = packed_ray(walk_ray);
-    for (int k = 0; k < walk_sp; ++k)
-        saved_rays[base + 1 + k] = packed_ray(walk_pending[k]);
-}
-
-// Resumes saved walk `entry`; its pixel.
-ivec2 walk_load(int entry)
-{
-    Walk w = walks[entry];
-    walk_sp = w.where.z;
-    walk_traced = w.where.w;
-    walk_live = true;
-    walk_color = w.color.rgb;
-    walk_budget = w.color.a;
-    int base = entry * TP2_WALK_RAYS;
-    walk_ray = unpacked_ray(saved_rays[base]);
-    for (int k = 0; k < walk_sp; ++k)
-        walk_pending[k] = unpacked_ray(saved_rays[base + 1 + k]);
-    return w.where.xy;
 }
 
 // The camera ray through image-plane position (x, y) in [-1, 1]^2, through
@@ -289,10 +219,10 @@ void count_rays()
     }
 }
 
-// One pixel sample, or one saved walk, for one pass (TP2_PASS_*): its walk
-// goes on for pass_rays rays; if it finishes, the sample's share is added
-// to its pixel, else it is saved for the next pass. An invocation that
-// lavapipe cut short writes nothing (its pass runs again with fewer rays).
+// One pixel sample, or one saved walk, for one pass (TP2_WALK_*): its walk
+// traces its whole tree, or goes on for pass_rays rays; if it finishes,
+// the sample's share is added to its pixel, else it is saved for the next
+// pass. An invocation that lavapipe cut short writes nothing.
 void main()
 {
     int width = frame.counts.x;
@@ -302,12 +232,21 @@ void main()
     int s = sample_index;
     ivec2 pixel;
     int entry = -1; // the saved walk this invocation goes on with
-    if (pass_kind == TP2_PASS_CONTINUE) {
+    Walk_ w;
+    Ray pending[STACK_SIZE];
+    if (WALK == TP2_WALK_CONTINUE) {
         entry = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
-        if (entry >= min(int(counters[TP2_COUNTER_WALKS]), walk_capacity) ||
-            walks[entry].where.z < 0)
+        if (entry >= min(int(counters[TP2_COUNTER_WALKS]), walk_capacity))
             return;
-        pixel = walk_load(entry);
+        Walk saved = walks[entry];
+        if (saved.where.z < 0) // finished in an earlier pass
+            return;
+        pixel = saved.where.xy;
+        int base = entry * TP2_WALK_RAYS;
+        w = Walk_(unpacked_ray(saved_rays[base]), saved.where.z, saved.where.w, true,
+                  saved.color.rgb, saved.color.a);
+        for (int k = 0; k < w.sp; ++k)
+            pending[k] = unpacked_ray(saved_rays[base + 1 + k]);
     } else {
         pixel = tile_origin + ivec2(gl_GlobalInvocationID.xy);
         if (pixel.x >= width || pixel.y >= height)
@@ -321,29 +260,46 @@ void main()
         real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
         rvec3 origin, dir;
         camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
-        walk_start(origin, dir);
+        w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), 0.5 * frame.limits.x);
         ray_tally[TP2_STAT_CAMERA] = 1u;
     }
-    walk_on(pass_rays, random2(pixel, uint(2 * s + 2)));
+
+    // The walk: all of it, or at most pass_rays rays (a full tree has
+    // MAX_RAYS).
+    vec2 area_shift = random2(pixel, uint(2 * s + 2));
+    int end = WALK == TP2_WALK_WHOLE ? MAX_RAYS : min(w.traced + pass_rays, MAX_RAYS);
+    for (; w.traced < end && w.live; ++w.traced) {
+        Ray first, second;
+        int children = trace_step(w.ray, area_shift, w.color, w.budget, first, second);
+        if (children == 2 && w.sp < STACK_SIZE)
+            pending[w.sp++] = second;
+        if (children > 0)
+            w.ray = first;
+        else if (w.sp > 0)
+            w.ray = pending[--w.sp];
+        else
+            w.live = false;
+    }
+    w.live = w.live && w.traced < MAX_RAYS;
 
     bool cut = LOOP_GUARD && was_cut();
     if (cut) {
         atomicAdd(counters[TP2_COUNTER_CUT], 1u);
-        if (accept_cut == 0)
+        if (WALK == TP2_WALK_WHOLE || accept_cut == 0)
             return;
         atomicAdd(counters[TP2_COUNTER_LOST], 1u);
-        walk_live = false; // what there is, wrong: tp2 says so
+        w.live = false; // what there is, wrong: tp2 says so
     }
     // pixels[] holds one band of whole rows, from row tile_origin.y on.
     int index = (pixel.y - tile_origin.y) * width + pixel.x;
-    if (!walk_live) {
-        vec3 share = walk_color / float(SAMPLES);
+    if (!w.live) {
+        vec3 share = w.color / float(SAMPLES);
         pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
         if (entry >= 0)
             walks[entry].where.z = -1;
         else if (LOOP_GUARD)
             started[index] = 1u;
-    } else {
+    } else if (WALK != TP2_WALK_WHOLE) {
         if (entry < 0) {
             entry = int(atomicAdd(counters[TP2_COUNTER_WALKS], 1u));
             if (entry >= walk_capacity) { // no room: it starts again later
@@ -352,7 +308,11 @@ void main()
             }
             started[index] = 1u;
         }
-        walk_save(entry, pixel);
+        walks[entry] = Walk(ivec4(pixel, w.sp, w.traced), vec4(w.color, w.budget));
+        int base = entry * TP2_WALK_RAYS;
+        saved_rays[base] = packed_ray(w.ray);
+        for (int k = 0; k < w.sp; ++k)
+            saved_rays[base + 1 + k] = packed_ray(pending[k]);
         atomicAdd(counters[TP2_COUNTER_UNFINISHED], 1u);
     }
     if (COUNT_RAYS)

@@ -23,10 +23,16 @@
  * render.c; rename ours so the two can never clash at link time. */
 #define tp2_trace_float test_spv_float
 #define tp2_trace_double test_spv_double
+#define tp2_trace_float_curved test_spv_float_curved
+#define tp2_trace_double_curved test_spv_double_curved
+#include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
+#include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #undef tp2_trace_float
 #undef tp2_trace_double
+#undef tp2_trace_float_curved
+#undef tp2_trace_double_curved
 
 /* SPIR-V opcodes, decorations and storage classes used here (SPIR-V 1.x
  * specification, sections 3.32, 3.20 and 3.7). */
@@ -567,9 +573,17 @@ int main(void)
     const struct spv d = {"double", test_spv_double,
                           sizeof test_spv_double / sizeof test_spv_double[0]};
     check_bindings();
+    const struct spv fc = {"float curved", test_spv_float_curved,
+                           sizeof test_spv_float_curved / sizeof test_spv_float_curved[0]};
+    const struct spv dc = {"double curved", test_spv_double_curved,
+                           sizeof test_spv_double_curved / sizeof test_spv_double_curved[0]};
     check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
                  sizeof(float), KIND_F32);
     check_module(&d, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
+                 sizeof(double), KIND_F64);
+    check_module(&fc, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
+                 sizeof(float), KIND_F32);
+    check_module(&dc, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
                  sizeof(double), KIND_F64);
     return unit_report();
 }
