@@ -616,6 +616,45 @@ static int check_band_fits(const struct vkc *vk, int width)
     return 0;
 }
 
+/* The device's storage-buffer range; the environment variable
+ * TP2_STORAGE_RANGE may lower it, so that tests can reach the limit with
+ * small scenes. */
+static VkDeviceSize storage_range(const struct vkc *vk)
+{
+    VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
+    const char *env = getenv("TP2_STORAGE_RANGE");
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < range)
+        range = v;
+    return range;
+}
+
+/* Every scene buffer must fit one storage-buffer binding, or the shader
+ * would read past what it is given. */
+static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
+                            bool use_double)
+{
+    static const char *const what[TP2_INPUT_BUFFERS] = {
+        [TP2_BINDING_FRAME] = "camera and settings", [TP2_BINDING_LIGHTS] = "lights",
+        [TP2_BINDING_PIGMENTS] = "pigments", [TP2_BINDING_FINISHES] = "finishes",
+        [TP2_BINDING_OBJECTS] = "objects",   [TP2_BINDING_BVH] = "BVH nodes",
+        [TP2_BINDING_EXTRA] = "polyhedron faces and quadrics",
+        [TP2_BINDING_TEXELS] = "texture texels",
+    };
+    VkDeviceSize range = storage_range(vk);
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
+        if (p->size[i] > range) {
+            fprintf(stderr, "tp2: scene too large for device '%s': its %s need %llu "
+                            "bytes, and one storage buffer holds at most %llu%s\n",
+                    vk->props.deviceName, what[i], (unsigned long long)p->size[i],
+                    (unsigned long long)range,
+                    use_double ? " (--precision float makes most of them smaller)" : "");
+            return -1;
+        }
+    return 0;
+}
+
 int render_scene(const struct scene *s, const struct render_options *opt,
                  render_rows_fn on_rows, void *user, struct render_stats *stats)
 {
@@ -645,6 +684,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         fputs("tp2: out of memory\n", stderr);
         goto done;
     }
+    if (check_scene_fits(&r.vk, &packed, opt->use_double) != 0)
+        goto done;
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     r.loop_guard = needs_loop_guard(&r.vk);
     r.pass_rays = pass_rays(r.loop_guard, &r.walking);

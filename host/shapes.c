@@ -524,9 +524,15 @@ static int mesh_read(struct scene_reader *r)
     }
     struct obj_mesh mesh;
     char err[512];
-    int rc = obj_read(f, path, &mesh, err, sizeof err);
-    fclose(f);
+    char *shown = lexer_escape(path); /* messages quote names safely */
     free(path);
+    if (!shown) {
+        fclose(f);
+        return read_fail(r, &at, "out of memory reading mesh %s", quoted);
+    }
+    int rc = obj_read(f, shown, &mesh, err, sizeof err);
+    fclose(f);
+    free(shown);
     if (rc != 0)
         return read_fail_text(r, err);
     if (mesh.ntri == 0)

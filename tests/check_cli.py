@@ -124,6 +124,44 @@ def case_names_escaped(c):
     c.expect(os.listdir(c.tmp) == [], f"left {os.listdir(c.tmp)}")
 
 
+def case_obj_name_escaped(c):
+    """An OBJ file's name in its own FILE:LINE:COL errors is escaped too."""
+    name = "me\x1bsh\x7f.obj"
+    with open(os.path.join(c.tmp, name), "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n")
+    scene = os.path.join(c.tmp, "scene.txt")
+    with open(scene, "w") as f:
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n1\nsolid 1 1 1\n"
+                "1\n1 0 0 1 0 0 1\n1\n0 0 mesh " + name + "\n")
+    out = c.out()
+    status, _, err = run(c.tp2, [scene, out, "8", "6"])
+    want = os.path.join(c.tmp, "me\\x1bsh\\x7f.obj") + ":4:7: error: "
+    c.expect(status == 1 and err.startswith(want), f"exit {status}, stderr {err!r}")
+    c.expect(not os.path.exists(out), "wrote the output")
+
+
+def case_scene_too_large(c):
+    """A scene buffer larger than the device's storage-buffer range is
+    refused before rendering, naming which (TP2_STORAGE_RANGE lowers the
+    range so that a small scene reaches it), and nothing is written."""
+    spheres = "".join(f"0 0 sphere {i} 0 -20 0.5\n" for i in range(100))
+    scene = os.path.join(c.tmp, "scene.txt")
+    with open(scene, "w") as f:
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n1\nsolid 1 1 1\n"
+                "1\n1 0 0 1 0 0 1\n100\n" + spheres)
+    out = c.out()
+    for env, ok in ((None, True), ({"TP2_STORAGE_RANGE": "4096"}, False)):
+        status, _, err = run(c.tp2, ["--bvh-min", "1000", scene, out, "8", "6"], env)
+        if ok:
+            c.expect(status == 0 and err == "", f"exit {status}, stderr {err!r}")
+            os.unlink(out)
+        else:
+            c.expect(status == 1 and err.startswith("tp2: scene too large for device '")
+                     and "its objects need 6400 bytes" in err and "at most 4096" in err,
+                     f"exit {status}, stderr {err!r}")
+    c.expect(sorted(os.listdir(c.tmp)) == ["scene.txt"], f"left {os.listdir(c.tmp)}")
+
+
 def case_output_dir_missing(c):
     """An output in a missing folder exits 1 and writes nothing."""
     status, _, err = run(c.tp2, [SCENE, os.path.join(c.tmp, "no", "out.ppm"), "8", "6"])
