@@ -7,6 +7,7 @@ float images are compared within 1e-5 unless a case says otherwise."""
 import glob
 import math
 import os
+import re
 import sys
 
 import tp2test
@@ -180,6 +181,55 @@ def case_bailout(c):
         c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
         # No ray here brings more than 0.5 (the gray past the depth limit).
         c.expect(exact - center[0] <= w / 2 * 0.5 + TOL, f"{options}: error above the bound")
+
+
+def bailout_worst_case(lights):
+    """The worst case for pruning we could build: the camera inside a glass
+    sphere (kr 0.3, kt 0.6, ior 1.3: rays off the center meet total
+    internal reflection, so chains of glass rays run to depth 10), with
+    glass and mirror spheres inside and a checker floor outside, under
+    `lights` dim point lights. Every finish's local color is at most 0.1
+    and kr + kt <= 0.9, so no ray returns more than 0.1 / (1 - 0.9) = 1
+    (the gray past the depth limit, 0.5, too): the bound applies as stated."""
+    c0 = 0.2
+    ci = 0.05 / lights  # sum of lights' colors 0.05; kd + ks = 1: at most 0.05
+    light_lines = "".join(
+        f"{3 * math.cos(k * 2.4):.4f} {2 - 0.3 * k:.4f} {3 * math.sin(k * 2.4):.4f} "
+        f"{ci!r} {ci!r} {ci!r} 1 0 0\n" for k in range(lights))
+    return (f"0.7 0.4 2.5\n-0.5 -0.3 -4\n0 1 0\n70\n{lights + 1}\n"
+            f"0 0 0 {c0} {c0} {c0} 0 0 0\n" + light_lines +
+            "3\nsolid 1 1 1\nchecker 1 1 1 0.2 0.3 0.9 1\nsolid 0.9 0.5 0.3\n"
+            "3\n0.25 0.5 0.5 30 0.3 0.6 1.3\n"   # glass: local <= 0.05 + 0.05
+            "0.25 0.5 0.5 10 0.9 0 1\n"           # mirror
+            "0.25 0.5 0.5 5 0.3 0.6 0.8\n"        # glass thinner than air
+            "6\n0 0 sphere 0 0 0 4\n1 0 plane 0 1 0 6\n"
+            "0 0 sphere -1 -1 -1 1.2\n2 1 sphere 1.2 0.5 -1.5 0.8\n"
+            "0 2 sphere 0 1.5 0.5 0.6\n0 1 sphere -1.5 1 1 0.5\n")
+
+
+def case_bailout_bound(c):
+    """Pruning's error is bounded by construction: whatever it prunes adds
+    up to at most bailout / 2 of weight per sample, so where no ray returns
+    more than 1 the default image is within half a level of --bailout 0 at
+    every pixel, in the worst case we could build (glass around the
+    camera, total internal reflection, 1 and 12 lights), while it still
+    prunes (fewer rays than --bailout 0)."""
+    for lights in (1, 12):
+        text = bailout_worst_case(lights)
+        exact = c.image(text, (64, 48), ["--bailout", "0"], name=f"exact{lights}")
+        pruned = c.image(text, (64, 48), [], name=f"pruned{lights}")
+        worst = max(abs(a - b) for ra, rb in zip(exact, pruned)
+                    for pa, pb in zip(ra, rb) for a, b in zip(pa, pb))
+        c.expect(worst <= 0.5 / 255 + TOL,
+                 f"{lights} lights: pruning moved a pixel by {worst * 255:.3f} levels")
+        counts = []
+        for options in (["--bailout", "0"], []):
+            status, _, err = run(c.tp2, ["--stats"] + options +
+                                 [os.path.join(c.tmp, f"exact{lights}.txt"),
+                                  os.path.join(c.tmp, "count.pfm"), "64", "48"])
+            m = re.search(r"rays total +(\d+)", err)
+            counts.append(int(m[1]) if m else 0)
+        c.expect(0 < counts[1] < counts[0], f"{lights} lights: rays {counts}, pruning pruned nothing")
 
 
 def slab_value(z, direction, depth, planes=(-3, -1, 1, 3)):
