@@ -52,19 +52,22 @@ struct Ray {
 
 uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 
-// Pruning with a bounded error: a child ray fainter than the bailout is
+// Pruning with a bounded error: a child ray fainter than the bailout W is
 // not traced, but only while the weights of the rays a sample has pruned
-// so far add up to at most half the bailout (`budget` is what is left).
-// What a pruned ray would have added is its weight times the radiance it
-// brings back, so a sample's error is at most bailout / 2 times the
-// largest such radiance: half an 8-bit level for the default 1/255 where
-// radiance is within [0, 1]. Without the budget, a deep tree prunes
-// thousands of faint rays whose weights add up to whole levels.
-bool traced(float w, inout float budget)
+// so far add up to at most W (`budget` is what is left). A pruned ray adds
+// its weight times 0.5, the middle of [0, 1], in place of the radiance it
+// would bring back; where radiance is within [0, 1] each such guess is off
+// by at most half its weight, so a sample's error is at most W / 2: half
+// an 8-bit level for the default 1/255 (README "Accuracy"). Without the
+// budget, a deep tree prunes thousands of faint rays whose weights add up
+// to whole levels; without the guess, the same bound allows half the
+// budget, and more rays are traced.
+bool traced(float w, inout float budget, inout vec3 color)
 {
     if (w >= frame.limits.x || w > budget)
         return true;
     budget -= w;
+    color += w * 0.5;
     return false;
 }
 
@@ -131,13 +134,13 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
         return 0;
     }
     int children = 0;
-    if (kr > 0.0 && traced(weight * kr, budget)) {
+    if (kr > 0.0 && traced(weight * kr, budget, color)) {
         rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
         first = Ray(outside, r, back, weight * kr, depth);
         ++children;
         ++ray_tally[TP2_STAT_REFLECTED];
     }
-    if (kt > 0.0 && traced(weight * kt, budget)) {
+    if (kt > 0.0 && traced(weight * kt, budget, color)) {
         real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
         real cosi = -dot(ray.dir, nf);
         real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
@@ -260,7 +263,7 @@ void main()
         real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
         rvec3 origin, dir;
         camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
-        w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), 0.5 * frame.limits.x);
+        w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), frame.limits.x);
         ray_tally[TP2_STAT_CAMERA] = 1u;
     }
 

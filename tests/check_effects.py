@@ -161,26 +161,42 @@ def case_arealight_soft_shadow(c):
     c.expect(worst < 1e-4, f"a tiny area light differs from the point light by {worst}")
 
 
+def mirror_chain(kr, ambient, bailout, depth=10, background=0.5):
+    """SPEC 4 with tp2's pruning for a ray bouncing between two facing
+    mirrors of reflectance kr lit only by ambient: ray k has weight kr^k; a
+    child of weight w below the bailout is pruned while the pruned weights
+    stay within the bailout, adding w * 0.5 instead of what it would see."""
+    value, budget = 0.0, bailout
+    for k in range(depth + 1):
+        value += kr ** k * ambient
+        w = kr ** (k + 1)
+        if k == depth:
+            return value + w * background  # past the depth limit: gray
+        if w < bailout and w <= budget:
+            return value + w * 0.5
+    return value
+
+
 def case_bailout(c):
     """--bailout W prunes a ray of weight below W only while the sample's
-    pruned weights add up to at most W / 2: between two mirrors of kr 0.5
-    the chain of weights 0.5^k stops at the first one at most W / 2, so the
-    center pixel sums 5 reflections (W = 0.1: 0.5^5 <= 0.05) or 9 (the
-    default 1/255: 0.5^9 <= 1/510) instead of 11 and the gray tail (W = 0,
-    and the double reference); what is lost is at most W / 2 times the
-    radiance the pruned ray would bring."""
+    pruned weights add up to at most W, and a pruned ray adds its weight
+    times 0.5: between two mirrors of kr 0.5 the center pixel stops at the
+    first weight at most W (W = 0.1: after 4 rays; the default 1/255:
+    after 8) instead of 11 rays and the gray tail (W = 0, and the double
+    reference); the error is at most W / 2 (no ray here brings more than 1)."""
     mirrors = (CAMERA + "1\n0 0 0 0.2 0.2 0.2 0 0 0\n1\nsolid 1 1 1\n1\n1 0 0 1 0.5 0 0\n"
                "2\n0 0 plane 0 0 1 1\n0 0 plane 0 0 -1 1\n")
-    exact = 0.2 * sum(0.5 ** k for k in range(11)) + 0.5 ** 11 * 0.5
-    pruned = 0.2 * sum(0.5 ** k for k in range(5))
-    default = 0.2 * sum(0.5 ** k for k in range(9))
-    for options, want, w in (([], default, 1 / 255), (["--bailout", "0"], exact, 0),
-                             (["--precision", "double"], exact, 0),
-                             (["--bailout", "0.1"], pruned, 0.1)):
+    exact = mirror_chain(0.5, 0.2, 0)
+    c.expect(abs(exact - (0.2 * sum(0.5 ** k for k in range(11)) + 0.5 ** 11 * 0.5)) < 1e-12,
+             "mirror_chain's exact value is not the closed form")
+    for options, w in (([], 1 / 255), (["--bailout", "0"], 0),
+                       (["--precision", "double"], 0), (["--bailout", "0.1"], 0.1)):
+        want = mirror_chain(0.5, 0.2, w)
         center = c.image(mirrors, (5, 5), options, name="b")[2][2]
         c.expect(approx(center, (want,) * 3), f"{options}: center {center}, want {want}")
-        # No ray here brings more than 0.5 (the gray past the depth limit).
-        c.expect(exact - center[0] <= w / 2 * 0.5 + TOL, f"{options}: error above the bound")
+        c.expect(abs(exact - center[0]) <= w / 2 + TOL, f"{options}: error above the bound")
+    c.expect(mirror_chain(0.5, 0.2, 0.1) != exact and mirror_chain(0.5, 0.2, 1 / 255) != exact,
+             "the chain prunes nothing: the test would not see pruning")
 
 
 def bailout_worst_case(lights):
@@ -208,12 +224,13 @@ def bailout_worst_case(lights):
 
 
 def case_bailout_bound(c):
-    """Pruning's error is bounded by construction: whatever it prunes adds
-    up to at most bailout / 2 of weight per sample, so where no ray returns
-    more than 1 the default image is within half a level of --bailout 0 at
-    every pixel, in the worst case we could build (glass around the
-    camera, total internal reflection, 1 and 12 lights), while it still
-    prunes (fewer rays than --bailout 0)."""
+    """Pruning's error is bounded by construction: what it prunes adds up
+    to at most the bailout of weight per sample, each pruned ray adding
+    half its weight, so where no ray returns more than 1 the default image
+    is within half a level of --bailout 0 at every pixel, in the worst
+    case we could build (glass around the camera, total internal
+    reflection, 1 and 12 lights), while it still prunes (fewer rays than
+    --bailout 0)."""
     for lights in (1, 12):
         text = bailout_worst_case(lights)
         exact = c.image(text, (64, 48), ["--bailout", "0"], name=f"exact{lights}")
