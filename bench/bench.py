@@ -186,6 +186,7 @@ def default_scenes(tp2, corpus):
         found += sorted(glob.glob(os.path.join(corpus, '*.txt')))
         found += sorted(glob.glob(os.path.join(corpus, '*.in')))
     found += sorted(glob.glob(os.path.join(REPO, 'scenes', '*.txt')))
+    found += sorted(glob.glob(os.path.join(REPO, 'bench', 'scenes', '*.txt')))
     return [p for p in found if not has_texmap(tp2, p)]
 
 
@@ -449,7 +450,7 @@ def main(argv=None):
     ap.add_argument('--sizes', default='400x300,1920x1080',
                     help='comma-separated WxH list (default 400x300,1920x1080)')
     ap.add_argument('--scenes', nargs='+', metavar='FILE',
-                    help='scene files (default: the corpus\'s and scenes/ '
+                    help='scene files (default: the corpus\'s, scenes/ and bench/scenes/ '
                          'scenes without texmap)')
     ap.add_argument('--corpus', default=DEFAULT_CORPUS,
                     help='folder of corpus scenes (default %(default)s, '

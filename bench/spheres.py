@@ -4,6 +4,11 @@ them mirrors and a third glass, on a checker floor (a BVH benchmark).
 
     python3 bench/spheres.py OUT.txt [--n 300] [--seed 1]
 
+bench/scenes/spheres.txt is its default output, in the benchmark's scene
+set (bench.py, compare.py). It is not among scenes/ because the float
+path misses the accuracy bar there (README "Accuracy": the checker
+floor's horizon, seen directly and in a hundred mirrors).
+
 The spheres (radius 0.35 to 0.8) lie on the floor y = 0 in x, z within
 [-12, 12] x [-16, 4], not overlapping; three point lights and an ambient
 light; the camera at (0, 5, 14) looks at (0, 0.5, -4). Standard library
