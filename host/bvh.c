@@ -1,4 +1,5 @@
 #include "bvh.h"
+#include "tp2_shared.h"
 
 #include <float.h>
 #include <math.h>
@@ -18,7 +19,7 @@
 /* The deepest a node may sit (root = 0); see the invariant in bvh.h. */
 #define BVH_MAX_NODE_DEPTH (TP2_BVH_MAX_DEPTH - 1)
 /* Most boxes accepted: 2 n - 1 nodes must be indexable by int32. */
-#define BVH_MAX_PRIMS ((size_t)1 << 30)
+#define BVH_MAX_PRIMS ((size_t)1 << (31 - TP2_BVH_LEAF_BITS - 1))
 
 /* One box while building: its float bounds, its center (the key that is
  * binned and split on), and where it came from. Partitions move these. */
@@ -276,9 +277,20 @@ static int split_node(struct prim *prims, const struct task *t,
     }
     int levels_left = BVH_MAX_NODE_DEPTH - (int)t->depth;
     /* !(extent > 0): all centers equal, or none comparable (NaN). */
-    if (n <= BVH_MIN_SPLIT || levels_left == 0 || !(extent[axis] > 0)) {
+    if (n <= BVH_MIN_SPLIT || levels_left == 0 ||
+        (!(extent[axis] > 0) && n <= BVH_MAX_LEAF)) {
         make_leaf(prims, t, node);
         return 0;
+    }
+    if (!(extent[axis] > 0)) { /* no plane separates them: halve by position */
+        make_leaf(prims, t, node); /* the bounds */
+        uint32_t mid = n / 2;
+        kids[0].begin = t->begin;
+        kids[0].end = kids[1].begin = t->begin + mid;
+        kids[1].end = t->end;
+        task_centroids(prims, &kids[0]);
+        task_centroids(prims, &kids[1]);
+        return 1;
     }
 
     struct bin bins[BVH_BINS];
@@ -434,6 +446,62 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
     struct bvh_node *shrunk = realloc(b->nodes, node_count * sizeof *shrunk);
     if (shrunk)
         b->nodes = shrunk;
+    return 0;
+}
+
+/* The link to node ni of b (tp2_shared.h); gpu_index[ni] is its place
+ * among the shader's nodes when it is an inner node. */
+static int32_t gpu_link(const struct bvh *b, int32_t ni, const int32_t *gpu_index)
+{
+    const struct bvh_node *nd = &b->nodes[ni];
+    if (nd->count > 0)
+        return nd->first << TP2_BVH_LEAF_BITS | (nd->count - 1);
+    return -gpu_index[ni];
+}
+
+/* Child k of the shader's node: its box at k of each axis' vec4. */
+static void gpu_child(struct bvh_gpu_node *g, int k, const struct bvh_node *c)
+{
+    g->x[2 * k] = c->lo[0], g->x[2 * k + 1] = c->hi[0];
+    g->y[2 * k] = c->lo[1], g->y[2 * k + 1] = c->hi[1];
+    g->z[2 * k] = c->lo[2], g->z[2 * k + 1] = c->hi[2];
+}
+
+size_t bvh_gpu_count(const struct bvh *b)
+{
+    return b->node_count <= 1 ? b->node_count : (b->node_count - 1) / 2;
+}
+
+int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out)
+{
+    if (b->node_count == 0)
+        return 0;
+    if (b->node_count == 1) { /* one leaf: both children of a root */
+        memset(out, 0, sizeof *out);
+        gpu_child(out, 0, &b->nodes[0]);
+        gpu_child(out, 1, &b->nodes[0]);
+        out->link[0] = out->link[1] = gpu_link(b, 0, NULL);
+        return 0;
+    }
+    /* Inner nodes keep their order (the root first); leaves drop out. */
+    int32_t *gpu_index = malloc(b->node_count * sizeof *gpu_index);
+    if (!gpu_index)
+        return -1;
+    int32_t next = 0;
+    for (size_t i = 0; i < b->node_count; i++)
+        gpu_index[i] = b->nodes[i].count > 0 ? -1 : next++;
+    for (size_t i = 0; i < b->node_count; i++) {
+        const struct bvh_node *nd = &b->nodes[i];
+        if (nd->count > 0)
+            continue;
+        struct bvh_gpu_node *g = &out[gpu_index[i]];
+        memset(g, 0, sizeof *g);
+        for (int k = 0; k < 2; k++) {
+            gpu_child(g, k, &b->nodes[nd->first + k]);
+            g->link[k] = gpu_link(b, nd->first + k, gpu_index);
+        }
+    }
+    free(gpu_index);
     return 0;
 }
 

@@ -1,5 +1,6 @@
 /* bvh.h: a bounding volume hierarchy over boxes (the bounded objects of a
- * scene), laid out for the shader.
+ * scene), built as a binary tree (struct bvh_node) and laid out for the
+ * shader (struct bvh_gpu_node).
  *
  * Depth invariant: every node's depth (root = 0) is at most
  * TP2_BVH_MAX_DEPTH - 1. A traversal that pushes the far child and
@@ -17,9 +18,9 @@
 /* The shader's traversal stack holds this many node indices. */
 #define TP2_BVH_MAX_DEPTH 32
 
-/* One node as the shader reads it (std430: vec3 lo; int first; vec3 hi;
- * int count). Bounds are floats rounded outward, so each node's box
- * contains its objects exactly, not just their float approximations. */
+/* One node of the tree as built. Bounds are floats rounded outward, so
+ * each node's box contains its objects exactly, not just their float
+ * approximations. */
 struct bvh_node {
     float lo[3];
     int32_t first; /* inner: left child, right is first + 1; leaf: 1st slot */
@@ -39,16 +40,42 @@ struct bvh {
     uint32_t *order;        /* order[slot] = input box there; n entries */
 };
 
+/* One inner node as the shader reads it: the boxes of both children,
+ * interleaved by axis so that one vec4 per axis tests both (x = left lo,
+ * left hi, right lo, right hi; y and z alike), and the two children's
+ * links (tp2_shared.h: an inner node, or a leaf's objects). A visit loads
+ * 14 words and enters a leaf without loading anything more; the tree as
+ * built needed 8 words per node and 12 more for its children's boxes.
+ * (std430: vec4 x, y, z; ivec2 link; 64 bytes.) */
+struct bvh_gpu_node {
+    float x[4], y[4], z[4];
+    int32_t link[2];
+    int32_t pad[2];
+};
+
+_Static_assert(sizeof(struct bvh_gpu_node) == 64, "bvh_gpu_node is 64 bytes");
+_Static_assert(offsetof(struct bvh_gpu_node, y) == 16, "bvh_gpu_node.y at 16");
+_Static_assert(offsetof(struct bvh_gpu_node, z) == 32, "bvh_gpu_node.z at 32");
+_Static_assert(offsetof(struct bvh_gpu_node, link) == 48, "bvh_gpu_node.link at 48");
+
+/* The shader's nodes of b, written to out (room for bvh_gpu_count(b)):
+ * one per inner node, the root first, in the tree's order. A tree that is
+ * a single leaf becomes a root whose two children are both that leaf.
+ * Returns 0, or -1 when out of memory. */
+size_t bvh_gpu_count(const struct bvh *b);
+int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out);
+
 /* Builds a BVH over n boxes given as (lo x y z, hi x y z), with binned
  * SAH (16 bins on the longest axis of the centroid bounds). A node becomes
  * a leaf when it holds <= 2 boxes, or <= 8 and splitting costs no less
- * than intersecting them all; a leaf holds more than 8 only when all its
- * centers are equal. Near the depth limit, splits that would not fit in the
- * levels left become median splits, so leaves stay small there too. The
- * same input always gives the same tree. Coordinates beyond float range
- * give infinite bounds; NaN gives an infinite box. Returns 0, or -1 when
- * out of memory or n > 2^30 (node indices must fit int32); b is zeroed on
- * failure and when n == 0. */
+ * than intersecting them all; no leaf holds more than 8 (boxes whose
+ * centers are all equal are halved by position). Near the depth limit,
+ * splits that would not fit in the levels left become median splits, so
+ * leaves stay small there too. The same input always gives the same tree.
+ * Coordinates beyond float range give infinite bounds; NaN gives an
+ * infinite box. Returns 0, or -1 when out of memory or n > 2^27 (a leaf's
+ * link, object << 3, must fit int32); b is zeroed on failure and when
+ * n == 0. */
 int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b);
 
 /* Frees the arrays and zeroes b; safe on a zeroed one. */

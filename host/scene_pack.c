@@ -294,12 +294,9 @@ static int pack_texels(const struct scene *s, const struct layout *lay,
 
 static int pack_bvh(const struct bvh *b, struct packed_scene *out)
 {
-    void *nodes = alloc_buffer(out, TP2_BINDING_BVH, b->node_count, sizeof *b->nodes);
-    if (!nodes)
-        return -1;
-    if (b->node_count)
-        memcpy(nodes, b->nodes, b->node_count * sizeof *b->nodes);
-    return 0;
+    struct bvh_gpu_node *nodes =
+        alloc_buffer(out, TP2_BINDING_BVH, bvh_gpu_count(b), sizeof *nodes);
+    return nodes ? bvh_gpu_nodes(b, nodes) : -1;
 }
 
 int scene_pack(const struct scene *s, const struct pack_options *opt,

@@ -29,19 +29,22 @@ const real BOX_SLACK = 1.0 + 4.5e-15LF; // 2^-47
 const real BOX_SLACK = 1.0 + 4.76837158203125e-7; // 2^-21
 #endif
 
-// Distance at which the ray enters the box, if before tmax; else NO_HIT.
-// Each slab's t carries two roundings of relative size 2^-24 (float), so
-// the exit is widened by 2^-21 of itself: a ray grazing a box's face far
-// from the camera must not miss it (Ize, "Robust BVH Ray Traversal").
-real box_entry(vec3 lo, vec3 hi, rvec3 o, rvec3 inv_d, real tmax)
+// Where the ray enters each of a node's two children's boxes (x, y),
+// if before tmax; else NO_HIT. Each slab's t carries two roundings of
+// relative size 2^-24 (float), so the exit is widened by 2^-21 of itself:
+// a ray grazing a box's face far from the camera must not miss it (Ize,
+// "Robust BVH Ray Traversal"). Both boxes at once: one vec4 per axis
+// holds (left lo, left hi, right lo, right hi).
+rvec2 children_entry(BvhNode n, rvec3 o, rvec3 inv_d, real tmax)
 {
-    rvec3 t0 = (rvec3(lo) - o) * inv_d;
-    rvec3 t1 = (rvec3(hi) - o) * inv_d;
-    rvec3 tn = min(t0, t1);
-    rvec3 tf = max(t0, t1);
-    real enter = max(max(tn.x, tn.y), max(tn.z, real(0.0)));
-    real leave = min(min(tf.x, tf.y), tf.z) * BOX_SLACK;
-    return enter <= min(leave, tmax) ? enter : NO_HIT;
+    rvec4 tx = (rvec4(n.x) - o.x) * inv_d.x;
+    rvec4 ty = (rvec4(n.y) - o.y) * inv_d.y;
+    rvec4 tz = (rvec4(n.z) - o.z) * inv_d.z;
+    rvec2 enter = max(max(min(tx.xz, tx.yw), min(ty.xz, ty.yw)),
+                      max(min(tz.xz, tz.yw), rvec2(0.0)));
+    rvec2 leave = min(min(max(tx.xz, tx.yw), max(ty.xz, ty.yw)), max(tz.xz, tz.yw)) *
+                  BOX_SLACK;
+    return mix(rvec2(NO_HIT), enter, lessThanEqual(enter, min(leave, rvec2(tmax))));
 }
 
 // 1 / d with zero components replaced by a tiny positive number, so the
@@ -71,14 +74,17 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
     int stack_node[TP2_BVH_STACK];
     real stack_t[TP2_BVH_STACK];
     int sp = 0;
-    int node = USE_BVH && box_entry(nodes[0].lo, nodes[0].hi, o, inv_d, h.t) < NO_HIT ? 0 : -1;
+    int node = USE_BVH ? 0 : -1; // the root: its children's boxes are tested
     int i = 0; // objects [i, end) come next
     int end = USE_BVH ? 0 : total;
     bool unbounded_left = true;
-    // Each object is tested once, each node visited and popped at most
-    // once, and the unbounded range is set once.
-    int steps = total + 2 * frame.geometry.z + 2;
+    // Each object is tested once (a one-leaf tree's twice), each node
+    // visited and each link popped at most once, the unbounded range set
+    // once.
+    int steps = total + TP2_BVH_LEAF_MAX + 2 * frame.geometry.z + 2;
     for (int step = 0; step < steps; ++step) {
+        int link = 0;       // a child to enter after this step, if `enter`
+        bool enter = false;
         if (i < end) {
             int part;
             real t = hit_object(i, o, d, i == start.object, start.inward, part);
@@ -91,31 +97,33 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out
             BvhNode n = nodes[node];
             node = -1;
-            if (n.count > 0) {
-                i = n.first;
-                end = n.first + n.count;
-            } else {
-                real tl = box_entry(nodes[n.first].lo, nodes[n.first].hi, o, inv_d, h.t);
-                real tr = box_entry(nodes[n.first + 1].lo, nodes[n.first + 1].hi, o, inv_d, h.t);
-                bool left_first = tl <= tr;
-                if (min(tl, tr) < NO_HIT)
-                    node = left_first ? n.first : n.first + 1;
-                if (max(tl, tr) < NO_HIT && sp < TP2_BVH_STACK) {
-                    stack_node[sp] = left_first ? n.first + 1 : n.first;
-                    stack_t[sp] = max(tl, tr);
-                    ++sp;
-                }
+            rvec2 t = children_entry(n, o, inv_d, h.t);
+            bool left_first = t.x <= t.y;
+            if (max(t.x, t.y) < NO_HIT && sp < TP2_BVH_STACK) {
+                stack_node[sp] = left_first ? n.link.y : n.link.x;
+                stack_t[sp] = max(t.x, t.y);
+                ++sp;
             }
-        } else if (USE_BVH && sp > 0) { // the nearest pending node, if still closer than the hit
+            link = left_first ? n.link.x : n.link.y;
+            enter = min(t.x, t.y) < NO_HIT;
+        } else if (USE_BVH && sp > 0) { // the nearest pending child, if still closer than the hit
             --sp;
-            if (stack_t[sp] < h.t)
-                node = stack_node[sp];
+            link = stack_node[sp];
+            enter = stack_t[sp] < h.t;
         } else if (USE_BVH && unbounded_left) {
             i = bounded;
             end = total;
             unbounded_left = false;
         } else {
             break;
+        }
+        if (USE_BVH && enter) { // an inner node next, or a leaf's objects
+            if (link < 0) {
+                node = -link;
+            } else {
+                i = link >> TP2_BVH_LEAF_BITS;
+                end = i + (link & TP2_BVH_LEAF_MASK) + 1;
+            }
         }
     }
     return h;

@@ -1,5 +1,5 @@
 // layout.glsl: the GPU structs as the shader sees them (std430).
-// Twin of host/gpu_layout_types.h (and struct bvh_node in host/bvh.h); keep
+// Twin of host/gpu_layout_types.h (and struct bvh_gpu_node in host/bvh.h); keep
 // field names, order and types identical: tests/test_layout.c checks them.
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
@@ -47,11 +47,14 @@ struct Object {
     ivec4 ids; // TP2_SHAPE_*, pigment, finish, first row in extra[]
 };
 
+// An inner node: its two children's boxes by axis (left lo, left hi,
+// right lo, right hi) and their links (tp2_shared.h: -link an inner node,
+// else a leaf's objects).
 struct BvhNode {
-    vec3 lo;
-    int first; // inner: left child (right = first + 1); leaf: first object
-    vec3 hi;
-    int count; // 0: inner; else objects [first, first + count)
+    vec4 x;
+    vec4 y;
+    vec4 z;
+    ivec2 link;
 };
 
 layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };

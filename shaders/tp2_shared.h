@@ -79,6 +79,13 @@
 /* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32
 
+/* A BVH child link (host/bvh.h, struct bvh_gpu_node): a negative link is
+ * the inner node -link; a link >= 0 a leaf over the objects from
+ * link >> TP2_BVH_LEAF_BITS, (link & TP2_BVH_LEAF_MASK) + 1 of them. */
+#define TP2_BVH_LEAF_BITS 3
+#define TP2_BVH_LEAF_MASK 7
+#define TP2_BVH_LEAF_MAX 8
+
 /* Pigment kinds (Pigment.kind.x); host/pigments.c maps keywords to them
  * and shaders/pigments.glsl colors each. */
 #define TP2_PIGMENT_SOLID 0

@@ -297,7 +297,7 @@ struct buffer {
 #define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
 #define OBJECT_FIELDS(F, T) F(T, a) F(T, b) F(T, c) F(T, ids)
-#define BVH_FIELDS(F, T) F(T, lo) F(T, first) F(T, hi) F(T, count)
+#define BVH_FIELDS(F, T) F(T, x) F(T, y) F(T, z) F(T, link)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color)
 #define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info)
 
@@ -312,7 +312,7 @@ FIELDS(LIGHT_FIELDS, gpu_light_d)
 FIELDS(PIGMENT_FIELDS, gpu_pigment_d)
 FIELDS(FINISH_FIELDS, gpu_finish_d)
 FIELDS(OBJECT_FIELDS, gpu_object_d)
-FIELDS(BVH_FIELDS, bvh_node) /* float bounds in both shaders */
+FIELDS(BVH_FIELDS, bvh_gpu_node) /* float bounds in both shaders */
 FIELDS(WALK_FIELDS, gpu_walk)  /* no reals: the same in both */
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_f)
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_d)
@@ -327,7 +327,7 @@ static const struct buffer float_buffers[] = {
     BUFFER("PigmentBuf", "Pigment", gpu_pigment_f, TP2_BINDING_PIGMENTS, 1),
     BUFFER("FinishBuf", "Finish", gpu_finish_f, TP2_BINDING_FINISHES, 1),
     BUFFER("ObjectBuf", "Object", gpu_object_f, TP2_BINDING_OBJECTS, 1),
-    BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+    BUFFER("BvhBuf", "BvhNode", bvh_gpu_node, TP2_BINDING_BVH, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_f, TP2_BINDING_WALK_RAYS, 1),
 };
@@ -338,7 +338,7 @@ static const struct buffer double_buffers[] = {
     BUFFER("PigmentBuf", "Pigment", gpu_pigment_d, TP2_BINDING_PIGMENTS, 1),
     BUFFER("FinishBuf", "Finish", gpu_finish_d, TP2_BINDING_FINISHES, 1),
     BUFFER("ObjectBuf", "Object", gpu_object_d, TP2_BINDING_OBJECTS, 1),
-    BUFFER("BvhBuf", "BvhNode", bvh_node, TP2_BINDING_BVH, 1),
+    BUFFER("BvhBuf", "BvhNode", bvh_gpu_node, TP2_BINDING_BVH, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_d, TP2_BINDING_WALK_RAYS, 1),
 };
