@@ -55,6 +55,7 @@ struct BvhNode {
     vec4 y;
     vec4 z;
     ivec2 link;
+    ivec2 pad; // never read: the struct is 64 bytes either way (std430)
 };
 
 layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };

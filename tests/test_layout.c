@@ -297,7 +297,7 @@ struct buffer {
 #define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
 #define OBJECT_FIELDS(F, T) F(T, a) F(T, b) F(T, c) F(T, ids)
-#define BVH_FIELDS(F, T) F(T, x) F(T, y) F(T, z) F(T, link)
+#define BVH_FIELDS(F, T) F(T, x) F(T, y) F(T, z) F(T, link) F(T, pad)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color)
 #define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info)
 
