@@ -2,7 +2,7 @@
 """compare.py - two tp2 builds side by side on the same scenes.
 
     python3 bench/compare.py OLD_TP2 NEW_TP2 [--scenes FILE...] [--sizes 1920x1080]
-                             [--runs 5] [--imgcmp build/tests/tp2-imgcmp]
+                             [--runs 5] [--imgcmp build/tests/tp2-imgcmp] [--bailout W]
 
 For each scene and size, the two builds render alternately (the old one
 first in even rounds, the new one first in odd ones), after one untimed
@@ -28,10 +28,10 @@ sys.path.insert(0, HERE)
 import bench  # noqa: E402  (default scene list, environment)
 
 
-def run(tp2, scene, out, w, h, env):
+def run(tp2, scene, out, w, h, env, options=()):
     """(wall seconds, render seconds, ok) of one tp2 --stats run."""
     t0 = time.perf_counter()
-    r = subprocess.run([tp2, "--stats", "--quiet", scene, out, str(w), str(h)],
+    r = subprocess.run([tp2, "--stats", "--quiet", *options, scene, out, str(w), str(h)],
                        capture_output=True, env=env)
     wall = time.perf_counter() - t0
     err = r.stderr.decode("utf-8", "replace")
@@ -48,10 +48,13 @@ def main():
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--imgcmp", default=os.path.join(REPO, "build", "tests", "tp2-imgcmp"))
     ap.add_argument("--corpus", default=bench.DEFAULT_CORPUS)
+    ap.add_argument("--bailout", help="tp2 --bailout for both builds (0: equal ray trees)")
     a = ap.parse_args()
+    options = ("--bailout", a.bailout) if a.bailout is not None else ()
     env = bench.tp2_env(True)
     scenes = a.scenes or bench.default_scenes(a.new, a.corpus)
-    print(f"old: {a.old}\nnew: {a.new}\nruns: {a.runs} alternating after a warm-up; "
+    print(f"old: {a.old}\nnew: {a.new}\noptions: {' '.join(options) or 'none'}\n"
+          f"runs: {a.runs} alternating after a warm-up; "
           f"load at start {os.getloadavg()[0]:.2f}")
     print(f"{'scene':28s} {'size':>10s} {'old wall':>9s} {'new wall':>9s} {'ratio':>6s} "
           f"{'old rend':>9s} {'new rend':>9s} {'ratio':>6s}  image")
@@ -64,13 +67,13 @@ def main():
                 times = {"old": [], "new": []}
                 ok = True
                 for k in ("old", "new"):   # warm-up
-                    ok &= run(getattr(a, k), scene, outs[k], w, h, env)[2]
+                    ok &= run(getattr(a, k), scene, outs[k], w, h, env, options)[2]
                 if not ok:
                     print(f"{os.path.basename(scene):28s} {size:>10s} (a build failed or warned)")
                     continue
                 for i in range(a.runs):
                     for k in (("old", "new") if i % 2 == 0 else ("new", "old")):
-                        wall, rend, _ = run(getattr(a, k), scene, outs[k], w, h, env)
+                        wall, rend, _ = run(getattr(a, k), scene, outs[k], w, h, env, options)
                         times[k].append((wall, rend))
                 med = {k: (statistics.median(t[0] for t in v), statistics.median(t[1] for t in v))
                        for k, v in times.items()}
