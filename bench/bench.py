@@ -36,6 +36,13 @@ machine, date and exact command, and a CSV (default docs/bench/bench.csv;
 check, with build/tests/tp2-imgcmp: mean error in levels, % of pixels off
 by more than 8).
 
+--phases: tp2 runs with --stats, and a second table gives the median of
+each phase tp2 reports (parse, device, bvh, upload, pipeline, render,
+readback, write; see README.TXT "--stats") beside its wall time, so a
+reader sees where the time goes at each size. --stats also counts rays
+on the device, which costs some render time: compare wall times of runs
+made the same way.
+
 --smoke: renders a small built-in scene once with each program at 64x48 and
 checks that both exit 0 and write a 64x48 PPM (for CI; no timings asserted,
 no CSV written). Exit status 0 if both do, 1 if not, 77 (CTest's usual
@@ -226,6 +233,29 @@ def run_timed(cmd, env, cwd, timeout):
             tail, cpu)
 
 
+PHASES = ['parse', 'device', 'bvh', 'upload', 'pipeline', 'render', 'readback',
+          'write']
+
+
+def tp2_phases(text):
+    """{phase: seconds} from tp2 --stats output (lines 'tp2: NAME  X s')."""
+    out = {}
+    for line in text.splitlines():
+        w = line.split()
+        if len(w) >= 4 and w[0] == 'tp2:' and w[1] in PHASES and w[3] == 's':
+            try:
+                out[w[1]] = float(w[2])
+            except ValueError:
+                pass
+    return out
+
+
+def phase_medians(samples):
+    """Median per phase over a list of tp2_phases() dicts."""
+    return {p: statistics.median(d[p] for d in samples if p in d)
+            for p in PHASES if any(p in d for d in samples)}
+
+
 def pov_cmd(povray, pov, out, w, h, threads, extra):
     return [povray, '+I' + pov, '+O' + out, '+FP', '+W%d' % w, '+H%d' % h,
             '-A', '-D', '+WT%d' % threads, 'File_Gamma=1.0', '-GA'] + extra
@@ -298,13 +328,15 @@ def bench_one(args, env, scene, w, h, work):
         extra = None
     t_out = os.path.join(work, tag + '.tp2.ppm')
     p_out = os.path.join(work, tag + '.pov.ppm')
-    cmds = {'tp2': ([args.tp2, '--bailout', repr(args.bailout), scene, t_out, str(w), str(h)],
-                    env, t_out)}
+    stats = ['--stats', '--quiet'] if args.phases else []
+    cmds = {'tp2': ([args.tp2] + stats + ['--bailout', repr(args.bailout), scene, t_out,
+                                          str(w), str(h)], env, t_out)}
     if extra is not None:
         cmds['povray'] = (pov_cmd(args.povray, pov, p_out, w, h, args.threads,
                                   extra), None, p_out)
     times = {'tp2': [], 'povray': []}
     cpus = {'tp2': [], 'povray': []}
+    phases = []
     dead = {k: (k not in cmds) for k in ('tp2', 'povray')}
 
     def one(prog, timed):
@@ -324,6 +356,8 @@ def bench_one(args, env, scene, w, h, work):
         if timed:
             times[prog].append(dt)
             cpus[prog].append(cpu)
+            if prog == 'tp2' and args.phases:
+                phases.append(tp2_phases(tail))
         if args.verbose:
             print('  %-6s %s %s %.3fs' % (prog, tag, 'run' if timed else
                                           'warm-up', dt), file=sys.stderr)
@@ -347,6 +381,7 @@ def bench_one(args, env, scene, w, h, work):
                                        if cpus[prog] else None)
         if ts and len(ts) < args.runs and row[prog + '_status'] == 'ok':
             row[prog + '_status'] = 'only %d runs' % len(ts)
+    row['phases'] = phase_medians(phases) if phases else {}
     tm, pm = row['tp2_median_s'], row['povray_median_s']
     row['ratio'] = tm / pm if (tm is not None and pm) else None
     target = TARGETS.get((w, h))
@@ -375,8 +410,8 @@ CSV_FIELDS = ['scene', 'width', 'height', 'runs', 'tp2_median_s',
               'povray_median_s', 'ratio', 'target', 'met', 'tp2_min_s',
               'tp2_max_s', 'povray_min_s', 'povray_max_s', 'tp2_status',
               'povray_status', 'tp2_cpu_median_s', 'povray_cpu_median_s',
-              'img_mean_abs_diff', 'img_pct_px_gt8',
-              'tp2_times_s', 'povray_times_s']
+              'img_mean_abs_diff', 'img_pct_px_gt8'] + [
+              'tp2_%s_s' % p for p in PHASES] + ['tp2_times_s', 'povray_times_s']
 
 
 def write_csv(path, rows, header_lines):
@@ -392,6 +427,8 @@ def write_csv(path, rows, header_lines):
             out = {}
             for k in CSV_FIELDS:
                 v = r.get(k)
+                if k.startswith('tp2_') and k[4:-2] in PHASES:
+                    v = r.get('phases', {}).get(k[4:-2])
                 if isinstance(v, float):
                     v = '%.4f' % v
                 out[k] = '' if v is None else v
@@ -439,6 +476,21 @@ def table(rows, compare):
     return lines
 
 
+def phase_table(rows):
+    """Where tp2's wall time goes: median seconds per phase."""
+    hdr = ['scene', 'size', 'wall'] + PHASES
+    data = [[r['scene'], '%dx%d' % (r['width'], r['height']),
+             fmt_s(r.get('tp2_median_s'))] +
+            [fmt_s(r['phases'].get(p)) for p in PHASES]
+            for r in rows if r.get('phases')]
+    widths = [max(len(str(c)) for c in col) for col in zip(hdr, *data)]
+
+    def fmt(cells):
+        return '  '.join(str(c).ljust(wd) if i < 2 else str(c).rjust(wd)
+                         for i, (c, wd) in enumerate(zip(cells, widths))).rstrip()
+    return [fmt(hdr), '  '.join('-' * wd for wd in widths)] + [fmt(c) for c in data]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(
         description='Benchmark tp2 against POV-Ray 3.7 (whole-process wall '
@@ -483,6 +535,8 @@ def main(argv=None):
     ap.add_argument('--no-baseline', action='store_true',
                     help='skip the fixed-cost row (built-in 3-object scene '
                          'at 16x12: start-up, parse, write)')
+    ap.add_argument('--phases', action='store_true',
+                    help='run tp2 with --stats and print its phase times')
     ap.add_argument('--smoke', action='store_true',
                     help='one 64x48 render per program; check exit 0')
     ap.add_argument('-v', '--verbose', action='store_true',
@@ -534,6 +588,8 @@ def main(argv=None):
         '%d untimed warm-up run(s) each; CPU = user+system seconds of the '
         'process (median)' % (args.runs, args.warmup),
         'command: %s' % command,
+    ] + (['phases: tp2 ran with --stats --quiet (it counts rays on the device)']
+         if args.phases else []) + [
         'load average (1, 5, 15 min) at start: %s' % loadavg(),
     ]
     if env.get('VK_ICD_FILENAMES') and not args.no_icd:
@@ -570,6 +626,11 @@ def main(argv=None):
     print()
     for ln in table(rows, args.compare):
         print(ln)
+    if args.phases:
+        print()
+        print('tp2 by phase (median seconds; tp2 ran with --stats):')
+        for ln in phase_table(rows):
+            print(ln)
     # Summary per size: geometric mean of the ratios.
     print()
     for (w, h) in sizes:

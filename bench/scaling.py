@@ -5,7 +5,7 @@ Run it with Debian's interpreter, which has python3-matplotlib
 (apt-get install -y python3-matplotlib):
 
     /usr/bin/python3 bench/scaling.py [--n 10,100,1000,10000,100000]
-        [--runs 3] [--size 400x300] [--pov] [--timeout 300]
+        [--kind spheres|triangles] [--runs 3] [--size 400x300] [--pov] [--timeout 300]
         [--tp2 build/tp2] [--csv docs/bench/scaling.csv]
         [--png docs/bench/scaling.png] [--keep-scenes DIR]
 
@@ -25,8 +25,19 @@ wall time). A run that exceeds --timeout is killed and recorded as a
 timeout; larger N are then skipped for that program (recorded as such)
 rather than left to hang.
 
-Outputs: a CSV (N, program, median_s, runs, status, times_s) and a log-log
-chart of time against N (timeouts drawn as open triangles at the time-out).
+--kind triangles: the same, with N random triangles (edge about twice the
+spheres' radius, random orientation) read from an OBJ file by one `mesh`
+object in place of the spheres.
+
+tp2 runs with --stats --quiet, and each of its phases (parse, device,
+bvh, upload, pipeline, render, readback, write; the median over the runs)
+goes into the CSV and the printed table, so the chart can show where the
+time goes as N grows: parsing and the BVH grow with N, the render with
+the depth of the tree.
+
+Outputs: a CSV (N, program, median_s, runs, status, times_s, and tp2's
+phases) and a log-log chart of time against N (timeouts drawn as open
+triangles at the time-out; tp2's main phases as dashed lines).
 """
 
 import argparse
@@ -77,14 +88,39 @@ def make_scene(n, seed):
     return '\n'.join(lines) + '\n'
 
 
+def make_triangles(n, seed, obj_path):
+    """The scene of make_scene with n random triangles (written to
+    obj_path as an OBJ) in place of the spheres, all of one pigment and
+    finish."""
+    rng = random.Random(seed + n)
+    r = 2.5 / n ** (1.0 / 3.0)
+    with open(obj_path, 'w') as fh:
+        fh.write('# scaling.py: %d random triangles (seed %d)\n' % (n, seed))
+        for _ in range(n):
+            c = (rng.uniform(-10, 10), rng.uniform(r, 6), rng.uniform(-10, 10))
+            for _ in range(3):
+                fh.write('v %.6f %.6f %.6f\n' % tuple(
+                    c[a] + rng.uniform(-r, r) for a in range(3)))
+        for i in range(n):
+            fh.write('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3))
+    lines = make_scene(1, seed).splitlines()
+    lines[-3:] = ['2', '0 1 mesh %s' % os.path.basename(obj_path),
+                  '%d 0 plane 0 1 0 0' % len(COLORS)]
+    lines[0] = '# scaling.py: %d random triangles (seed %d)' % (n, seed)
+    return '\n'.join(lines) + '\n'
+
+
 def measure(args, env, prog, scene, w, h, work):
+    """(times, status, phases): phases are tp2's median phase times."""
     out = os.path.join(work, '%s.ppm' % prog)
+    phases = []
     if prog == 'tp2':
-        cmd = [args.tp2, '--bailout', repr(args.bailout), scene, out, str(w), str(h)]
+        cmd = [args.tp2, '--stats', '--quiet', '--bailout', repr(args.bailout), scene,
+               out, str(w), str(h)]
         e = env
     else:
         pov = os.path.splitext(scene)[0] + '.pov'
-        extra = bench.convert(scene, w, h, pov, args.bailout)
+        extra = bench.convert(args.tp2, scene, w, h, pov, args.bailout)
         cmd, e = bench.pov_cmd(args.povray, pov, out, w, h, args.threads,
                                extra), None
     times, status = [], 'ok'
@@ -97,9 +133,11 @@ def measure(args, env, prog, scene, w, h, work):
                 sys.stderr.write(tail + '\n')
             break
         times.append(dt)
+        if prog == 'tp2':
+            phases.append(bench.tp2_phases(tail))
         if args.verbose:
             print('  %s N run %.3fs' % (prog, dt), file=sys.stderr)
-    return times, status
+    return times, status, bench.phase_medians(phases) if phases else {}
 
 
 def write_csv(path, rows, header):
@@ -109,7 +147,8 @@ def write_csv(path, rows, header):
         for ln in header:
             fh.write('# %s\n' % ln)
         wr = csv.DictWriter(fh, fieldnames=['n', 'program', 'median_s',
-                                            'runs', 'status', 'times_s'])
+                                            'runs', 'status', 'times_s'] +
+                            ['%s_s' % p for p in bench.PHASES], restval='')
         wr.writeheader()
         for r in rows:
             wr.writerow(r)
@@ -140,6 +179,14 @@ def plot(csv_path, png_path, timeout):
         if ok:
             ax.plot([p[0] for p in ok], [p[1] for p in ok], marker=marker,
                     color=color, label=prog + ' (median)')
+        if prog == 'tp2':
+            for phase, shade in (('parse', 'tab:green'), ('bvh', 'tab:red'),
+                                 ('render', 'tab:purple')):
+                pts = [(int(r['n']), float(r[phase + '_s'])) for r in pr
+                       if r.get(phase + '_s') and float(r[phase + '_s']) > 0]
+                if pts:
+                    ax.plot([p[0] for p in pts], [p[1] for p in pts], linestyle='--',
+                            marker='.', color=shade, label='tp2 ' + phase)
         to = [int(r['n']) for r in pr if r['status'].startswith('timeout')]
         if to:
             ax.plot(to, [timeout] * len(to), linestyle='none', marker='^',
@@ -151,7 +198,7 @@ def plot(csv_path, png_path, timeout):
     ax.yaxis.set_major_formatter(plain)
     ax.yaxis.set_minor_formatter(plain)
     ax.xaxis.set_major_formatter(plain)
-    ax.set_xlabel('spheres N')
+    ax.set_xlabel('objects N (spheres, or triangles of one mesh)')
     ax.set_ylabel('whole-process wall time, s')
     ax.set_title('Render time vs object count, 400x300')
     ax.grid(True, which='both', alpha=0.3)
@@ -184,6 +231,7 @@ def main(argv=None):
                                              'object count')
     ap.add_argument('--n', default='10,100,1000,10000,100000',
                     help='comma-separated sphere counts')
+    ap.add_argument('--kind', choices=('spheres', 'triangles'), default='spheres')
     ap.add_argument('--runs', type=int, default=3)
     ap.add_argument('--size', default='400x300')
     ap.add_argument('--seed', type=int, default=1)
@@ -219,8 +267,9 @@ def main(argv=None):
     info = bench.machine_info(args.tp2, env)
     header = ['tp2 scaling: %s, %s CPUs; tp2 device %s; %s' % (
         info['cpu'], info['nproc'], info['device'], info['povray']),
-        'size %dx%d, median of %d runs, timeout %g s, seed %d' % (
-        w, h, args.runs, args.timeout, args.seed),
+        'size %dx%d, %s, median of %d runs, timeout %g s, seed %d' % (
+        w, h, args.kind, args.runs, args.timeout, args.seed),
+        'phases: tp2 --stats (median per phase)',
         'command: %s' % ' '.join([sys.executable] + sys.argv)]
     for ln in header:
         print(ln)
@@ -228,9 +277,13 @@ def main(argv=None):
     stopped = {p: None for p in progs}
     try:
         for n in ns:
-            scene = os.path.join(work, 'spheres-%d.txt' % n)
+            scene = os.path.join(work, '%s-%d.txt' % (args.kind, n))
             with open(scene, 'w') as fh:
-                fh.write(make_scene(n, args.seed))
+                if args.kind == 'spheres':
+                    fh.write(make_scene(n, args.seed))
+                else:
+                    fh.write(make_triangles(n, args.seed, os.path.join(
+                        work, 'triangles-%d.obj' % n)))
             for prog in progs:
                 if stopped[prog] is not None:
                     rows.append({'n': n, 'program': prog, 'median_s': '',
@@ -238,15 +291,18 @@ def main(argv=None):
                                  'status': 'skipped (N=%d timed out)' %
                                  stopped[prog]})
                     continue
-                times, status = measure(args, env, prog, scene, w, h, work)
+                times, status, phases = measure(args, env, prog, scene, w, h, work)
                 med = statistics.median(times) if times else None
-                rows.append({'n': n, 'program': prog,
-                             'median_s': '' if med is None else '%.4f' % med,
-                             'runs': len(times), 'status': status,
-                             'times_s': ' '.join('%.4f' % t for t in times)})
-                print('N=%-7d %-6s %s %s' % (
+                row = {'n': n, 'program': prog,
+                       'median_s': '' if med is None else '%.4f' % med,
+                       'runs': len(times), 'status': status,
+                       'times_s': ' '.join('%.4f' % t for t in times)}
+                row.update({'%s_s' % p: '%.4f' % v for p, v in phases.items()})
+                rows.append(row)
+                print('N=%-7d %-6s %s %s%s' % (
                     n, prog, '-' if med is None else '%.3f s' % med,
-                    '' if status == 'ok' else status))
+                    '' if status == 'ok' else status,
+                    ''.join('  %s %.3f' % (p, v) for p, v in phases.items())))
                 sys.stdout.flush()
                 if status.startswith('timeout'):
                     stopped[prog] = n

@@ -42,7 +42,9 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: device     %s\n", st->device_name);
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation)\n", st->device);
-    fprintf(stderr, "tp2: upload     %8.3f s (packing, BVH, buffers)\n", st->upload);
+    fprintf(stderr, "tp2: bvh        %8.3f s (building the BVH)\n", st->bvh);
+    fprintf(stderr, "tp2: upload     %8.3f s (packing and filling the device's buffers)\n",
+            st->upload);
     fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);

@@ -708,7 +708,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     stats->pass_rays = r.pass_rays;
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = t1 - t0;
-    stats->upload = t2 - t1;
+    stats->bvh = packed.bvh_time;
+    stats->upload = t2 - t1 - packed.bvh_time;
     stats->pipeline = t3 - t2 + (r.pipeline_time - made);
     stats->render -= r.pipeline_time - made; /* walk pipelines made on the way */
     rc = 0;

@@ -26,7 +26,7 @@ struct render_options {
  * readback (copying finished bands out of device memory) and write (the
  * time spent in the row callback). */
 struct render_stats {
-    double device, pipeline, upload, render, readback, write;
+    double device, pipeline, bvh, upload, render, readback, write;
     int bands, band_rows; /* bands rendered, rows in each (the last: fewer) */
     uint32_t passes;      /* dispatches: a pass per band and sample, more
                            * where walks went on or lavapipe cut a pass */

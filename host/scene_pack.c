@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bvh.h"
+#include "clock.h"
 #include "gpu_layout.h"
 #include "pigments.h"
 #include "shapes.h"
@@ -211,7 +212,8 @@ static int single_kind(int kinds)
 
 /* Slots: every object's primitives, the bounded ones first in the BVH's
  * order, then the unbounded ones in scene order. */
-static int layout_objects(const struct scene *s, struct layout *lay)
+static int layout_objects(const struct scene *s, struct layout *lay,
+                          double *bvh_time)
 {
     lay->nprims = 0;
     for (size_t i = 0; i < s->nobjects; i++) {
@@ -251,7 +253,10 @@ static int layout_objects(const struct scene *s, struct layout *lay)
             lay->slots[b - 1] = t;
         }
         lay->nbounded = nb;
-        if (bvh_build((const double (*)[6])boxes, nb, &lay->bvh) == 0) {
+        double t0 = clock_seconds();
+        int built = bvh_build((const double (*)[6])boxes, nb, &lay->bvh);
+        *bvh_time = clock_seconds() - t0;
+        if (built == 0) {
             for (size_t slot = 0; slot < nb; slot++)
                 lay->slots[slot] = bounded[lay->bvh.order[slot]];
             rc = 0;
@@ -307,7 +312,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
                                     : s->has_samples ? s->samples : 1};
     camera_basis(s, opt->width, opt->height, &lay.cam);
     out->features = scene_features(s, lay.samples);
-    int rc = layout_objects(s, &lay);
+    int rc = layout_objects(s, &lay, &out->bvh_time);
     if (rc == 0)
         rc = layout_texels(s, &lay);
     out->features.bounded_shape = single_kind(lay.bounded_kinds);

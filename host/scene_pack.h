@@ -37,6 +37,7 @@ struct packed_scene {
     void *data[TP2_INPUT_BUFFERS];
     size_t size[TP2_INPUT_BUFFERS];
     struct scene_features features;
+    double bvh_time; /* seconds spent building the BVH (for --stats) */
 };
 
 /* Packs s: camera basis, lights, materials, texels, and the objects as GPU

@@ -512,7 +512,7 @@ def case_stats(c):
     status, _, err = run(c.tp2, ["--stats", "--spp", "3", scene, os.path.join(c.tmp, "o.ppm"),
                                  "10", "7"])
     c.expect(status == 0, f"exit {status}: {err}")
-    for phase in ("parse", "device", "upload", "pipeline", "render", "readback", "write"):
+    for phase in ("parse", "device", "bvh", "upload", "pipeline", "render", "readback", "write"):
         c.expect(f"tp2: {phase} " in err, f"no {phase} line in {err!r}")
     counts = {}
     for line in err.splitlines():
