@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal.h"
+
 /* Longest part of a token quoted in a message; the rest becomes "...". */
 #define QUOTE_MAX 32
 
@@ -94,7 +96,7 @@ static size_t number_length(const struct lexer *lx, size_t pos, double *value)
         lx->buf[pos] == '\0')
         return 0;
     char *end = NULL;
-    double v = strtod(lx->buf + pos, &end);
+    double v = decimal_read(lx->buf + pos, &end);
     size_t n = (size_t)(end - (lx->buf + pos));
     if (pos + n > lx->len) /* cannot happen: buf[len] is NUL */
         n = lx->len - pos;
