@@ -1,11 +1,14 @@
+#define _POSIX_C_SOURCE 200809L
 #include "bvh.h"
 #include "tp2_shared.h"
 
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* SAH bins along the split axis: more bins find better planes, fewer are
  * faster; 16 is the usual balance. */
@@ -391,6 +394,117 @@ static int split_node(struct prim *prims, const struct task *t,
     return 1;
 }
 
+/* Builds the subtree of task root into nodes[] numbered from 0 (root's
+ * own node; root.node is ignored), depth-first with an explicit stack,
+ * left child first, so subtrees sit together. A task at depth d finds at
+ * most d right siblings of its ancestors waiting, and pushes two only when
+ * d < BVH_MAX_NODE_DEPTH, so the stack never exceeds TP2_BVH_MAX_DEPTH.
+ * Returns the number of nodes made. */
+static size_t build_subtree(struct prim *prims, struct task root,
+                            struct bvh_node *nodes)
+{
+    struct task stack[TP2_BVH_MAX_DEPTH];
+    int sp = 0;
+    root.node = 0;
+    stack[sp++] = root;
+    size_t node_count = 1;
+    while (sp > 0) {
+        struct task t = stack[--sp];
+        struct bvh_node *node = &nodes[t.node];
+        struct task kids[2];
+        if (!split_node(prims, &t, node, kids))
+            continue;
+        uint32_t left = (uint32_t)node_count;
+        node_count += 2;
+        node->first = (int32_t)left;
+        node->count = 0;
+        for (int k = 1; k >= 0; k--) {
+            kids[k].node = left + (uint32_t)k;
+            kids[k].depth = t.depth + 1;
+            stack[sp++] = kids[k];
+        }
+    }
+    return node_count;
+}
+
+/* Below this many boxes a second thread costs more than it saves. */
+#define BVH_PARALLEL_MIN 65536
+
+/* One half of the tree built by a thread of its own. */
+struct half {
+    struct prim *prims;
+    struct task root;
+    struct bvh_node *nodes;
+    size_t count;
+};
+
+static void *build_half(void *arg)
+{
+    struct half *h = arg;
+    h->count = build_subtree(h->prims, h->root, h->nodes);
+    return NULL;
+}
+
+/* Where node i of a half lands in the whole tree: its root next to its
+ * sibling (nodes 1 and 2), the rest after both roots, left half first. */
+static size_t half_place(size_t i, size_t root, size_t base)
+{
+    return i == 0 ? root : base + i - 1;
+}
+
+static void place_half(const struct half *h, size_t root, size_t base,
+                       struct bvh_node *out)
+{
+    for (size_t i = 0; i < h->count; i++) {
+        struct bvh_node node = h->nodes[i];
+        if (node.count == 0)
+            node.first = (int32_t)half_place((size_t)node.first, root, base);
+        out[half_place(i, root, base)] = node;
+    }
+}
+
+/* The tree below the root's split, its two halves on two threads (the
+ * boxes of one half are a range of prims no other thread touches): the
+ * same nodes as one thread makes, numbered left half first. Returns the
+ * node count, or 0 when out of memory. */
+static size_t build_halves(struct prim *prims, struct task kids[2],
+                           struct bvh_node *nodes)
+{
+    struct half h[2];
+    for (int k = 0; k < 2; k++) {
+        kids[k].depth = 1;
+        h[k] = (struct half){prims, kids[k], NULL, 0};
+        h[k].nodes = malloc((2 * (size_t)(kids[k].end - kids[k].begin) - 1) *
+                            sizeof *h[k].nodes);
+    }
+    size_t total = 0;
+    if (h[0].nodes && h[1].nodes) {
+        pthread_t thread;
+        bool threaded = pthread_create(&thread, NULL, build_half, &h[0]) == 0;
+        if (!threaded)
+            build_half(&h[0]);
+        build_half(&h[1]);
+        if (threaded)
+            pthread_join(thread, NULL);
+        place_half(&h[0], 1, 3, nodes);
+        place_half(&h[1], 2, 3 + h[0].count - 1, nodes);
+        total = 1 + h[0].count + h[1].count;
+    }
+    free(h[0].nodes);
+    free(h[1].nodes);
+    return total;
+}
+
+/* Two threads where there are two cores, unless TP2_BVH_THREADS=1 (so
+ * that tests can compare both builds). */
+static bool two_threads(void)
+{
+    const char *env = getenv("TP2_BVH_THREADS");
+    if (env && strcmp(env, "1") == 0)
+        return false;
+    return sysconf(_SC_NPROCESSORS_ONLN) > 1;
+}
+
 int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
 {
     memset(b, 0, sizeof *b);
@@ -411,31 +525,22 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
     for (size_t i = 0; i < n; i++)
         prim_init(&prims[i], boxes[i], (uint32_t)i);
 
-    /* Depth-first with an explicit stack, left child first, so subtrees
-     * sit together in nodes[]. A task at depth d finds at most d right
-     * siblings of its ancestors waiting, and pushes two only when
-     * d < BVH_MAX_NODE_DEPTH, so the stack never exceeds
-     * TP2_BVH_MAX_DEPTH. */
-    struct task stack[TP2_BVH_MAX_DEPTH];
-    int sp = 0;
-    stack[sp] = (struct task){.node = 0, .begin = 0, .end = (uint32_t)n};
-    task_centroids(prims, &stack[sp++]);
-    size_t node_count = 1;
-    while (sp > 0) {
-        struct task t = stack[--sp];
-        struct bvh_node *node = &b->nodes[t.node];
-        struct task kids[2];
-        if (!split_node(prims, &t, node, kids))
-            continue;
-        uint32_t left = (uint32_t)node_count;
-        node_count += 2;
-        node->first = (int32_t)left;
-        node->count = 0;
-        for (int k = 1; k >= 0; k--) {
-            kids[k].node = left + (uint32_t)k;
-            kids[k].depth = t.depth + 1;
-            stack[sp++] = kids[k];
-        }
+    struct task root = {.node = 0, .begin = 0, .end = (uint32_t)n};
+    task_centroids(prims, &root);
+    size_t node_count;
+    struct task kids[2];
+    if (n >= BVH_PARALLEL_MIN && two_threads() &&
+        split_node(prims, &root, &b->nodes[0], kids)) {
+        b->nodes[0].first = 1;
+        b->nodes[0].count = 0;
+        node_count = build_halves(prims, kids, b->nodes);
+    } else {
+        node_count = build_subtree(prims, root, b->nodes);
+    }
+    if (node_count == 0) {
+        free(prims);
+        bvh_free(b);
+        return -1;
     }
 
     for (size_t i = 0; i < n; i++)

@@ -1,6 +1,7 @@
 /* test_bvh.c: bvh_build on seeded sphere sets, checked against its
  * contract and against a linear scan. The last line is "N passed, M
  * failed"; the exit status is 0 only when nothing failed. */
+#define _POSIX_C_SOURCE 200809L /* setenv */
 #include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -603,6 +604,49 @@ static double check_rays(const char *name, const double (*s)[4], size_t n,
     return (double)visited / n_rays;
 }
 
+/* 1 if a and b are the same tree whatever their node numbering: the same
+ * boxes and leaves, met in the same depth-first order. */
+static bool same_shape(const struct bvh *a, const struct bvh *b)
+{
+    if (a->node_count != b->node_count)
+        return false;
+    int32_t sa[64], sb[64];
+    int sp = 0;
+    sa[sp] = 0;
+    sb[sp++] = 0;
+    while (sp > 0) {
+        sp--;
+        const struct bvh_node *x = &a->nodes[sa[sp]], *y = &b->nodes[sb[sp]];
+        if (memcmp(x->lo, y->lo, sizeof x->lo) || memcmp(x->hi, y->hi, sizeof x->hi) ||
+            x->count != y->count || (x->count > 0 && x->first != y->first))
+            return false;
+        if (x->count == 0) {
+            if (sp + 2 > 64)
+                return false;
+            for (int k = 1; k >= 0; k--) {
+                sa[sp] = x->first + k;
+                sb[sp++] = y->first + k;
+            }
+        }
+    }
+    return true;
+}
+
+/* Large sets are built on two threads, each half of the tree on its own:
+ * the tree must be the one a single thread builds. */
+static void check_threads_agree(const char *name, const double (*s)[4], size_t n,
+                                const struct bvh *b)
+{
+    struct bvh one;
+    setenv("TP2_BVH_THREADS", "1", 1);
+    int rc = sphere_bvh_build(s, n, &one);
+    unsetenv("TP2_BVH_THREADS");
+    expect(rc == 0 && same_shape(b, &one) &&
+               memcmp(one.order, b->order, n * sizeof *b->order) == 0,
+           "%s: one thread builds the same tree as two", name);
+    bvh_free(&one);
+}
+
 /* ---- Driver ---- */
 
 struct set_case {
@@ -637,6 +681,9 @@ static void run_case(const struct set_case *c, uint64_t seed)
                "%s: the same input builds the same tree", c->name);
         bvh_free(&again);
     }
+
+    if (c->n >= 100000)
+        check_threads_agree(c->name, (const double (*)[4])s, c->n, &b);
 
     double avg = check_rays(c->name, (const double (*)[4])s, c->n, &b,
                             c->n_rays, seed ^ 0x5eed);
