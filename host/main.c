@@ -41,7 +41,8 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     uint64_t total = 0;
     fprintf(stderr, "tp2: device     %s\n", st->device_name);
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
-    fprintf(stderr, "tp2: device     %8.3f s (instance and device creation)\n", st->device);
+    fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh "
+                    "and upload)\n", st->device);
     fprintf(stderr, "tp2: bvh        %8.3f s (building the BVH)\n", st->bvh);
     fprintf(stderr, "tp2: upload     %8.3f s (packing and filling the device's buffers)\n",
             st->upload);
