@@ -709,7 +709,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         goto done;
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
     if (packed_rc != 0) {
-        fputs("tp2: out of memory\n", stderr);
+        fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the device\n",
+                s->nobjects);
         goto done;
     }
     if (check_scene_fits(&r.vk, &packed, opt->use_double) != 0)
