@@ -31,6 +31,7 @@ struct scene_reader {
     const char *name;
     char *dir;         /* the scene file's folder, for the files it names */
     const char *shown; /* name as messages show it (lexer_escape) */
+    char *shown_copy;  /* what shown points to, unless out of memory */
     char *err;
     size_t errsize;
     struct scene s;
@@ -656,92 +657,81 @@ static int parse_scene(struct scene_reader *p)
     return 0;
 }
 
+/* Sets up p to read a scene called name (NULL: "<input>") into out, with
+ * messages to err; -1 when out of memory (reported). */
+static int reader_begin(struct scene_reader *p, const char *name,
+                        struct scene *out, char *err, size_t errsize)
+{
+    memset(p, 0, sizeof *p);
+    memset(out, 0, sizeof *out);
+    p->name = name ? name : "<input>";
+    p->err = err;
+    p->errsize = errsize;
+    if (err && errsize > 0)
+        err[0] = '\0';
+    p->shown_copy = lexer_escape(p->name);
+    p->shown = p->shown_copy ? p->shown_copy : "?";
+    p->dir = folder_of(p->name);
+    return p->shown_copy && p->dir ? 0 : fail_oom(p);
+}
+
+/* Parses what p's lexer gives, then frees p. */
+static int reader_run(struct scene_reader *p, struct scene *out)
+{
+    next(p);
+    int rc = parse_scene(p);
+    if (rc == 0)
+        *out = p->s;
+    else
+        scene_free(&p->s);
+    return rc;
+}
+
+static void reader_end(struct scene_reader *p)
+{
+    lexer_free(&p->lx);
+    free(p->dir);
+    free(p->shown_copy);
+}
+
 int scene_parse_text(const char *name, const char *text, size_t len,
                      struct scene *out, char *err, size_t errsize)
 {
     struct scene_reader p;
-    memset(&p, 0, sizeof p);
-    memset(out, 0, sizeof *out);
-    p.name = name ? name : "<input>";
-    char *shown = lexer_escape(p.name);
-    p.shown = shown ? shown : "?";
-    p.err = err;
-    p.errsize = errsize;
-    if (err && errsize > 0)
-        err[0] = '\0';
-    p.dir = folder_of(p.name);
-    if (!shown || !p.dir || lexer_init(&p.lx, text, len)) {
-        lexer_free(&p.lx);
-        fail_oom(&p);
-        free(p.dir);
-        free(shown);
-        return -1;
-    }
-    next(&p);
-    int rc = parse_scene(&p);
-    lexer_free(&p.lx);
-    free(p.dir);
-    free(shown);
-    if (rc) {
-        scene_free(&p.s);
-        return -1;
-    }
-    *out = p.s;
-    return 0;
+    int rc = reader_begin(&p, name, out, err, errsize);
+    if (rc == 0 && lexer_init_text(&p.lx, text, len) != 0)
+        rc = fail_oom(&p);
+    if (rc == 0)
+        rc = reader_run(&p, out);
+    reader_end(&p);
+    return rc;
 }
 
-/* Reads a whole file into a malloc'd buffer. Returns 0, or -1 with errno
- * saying why. */
-static int read_all(const char *path, char **text, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return -1;
-    errno = 0;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    int saved = ENOMEM;
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (ferror(f)) {
-            saved = errno ? errno : EIO;
-            break;
-        }
-        if (n < cap) { /* fread stopped short without an error: end */
-            fclose(f);
-            *text = buf;
-            *len = n;
-            return 0;
-        }
-        char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-        if (!bigger)
-            break;
-        buf = bigger;
-        cap *= 2;
-    }
-    free(buf);
-    fclose(f);
-    errno = saved;
-    return -1;
-}
-
+/* The text streams from the file (lexer.h): it is never held whole. */
 int scene_parse_file(const char *path, struct scene *out, char *err,
                      size_t errsize)
 {
-    char *text = NULL;
-    size_t len = 0;
-    memset(out, 0, sizeof *out);
-    errno = 0;
-    if (read_all(path, &text, &len)) {
-        int saved = errno;
-        char *shown = lexer_escape(path);
-        if (err && errsize > 0)
-            snprintf(err, errsize, "tp2: cannot read '%s': %s", shown ? shown : "?",
-                     strerror(saved));
-        free(shown);
-        return -1;
+    struct scene_reader p;
+    int rc = reader_begin(&p, path, out, err, errsize);
+    if (rc != 0) {
+        reader_end(&p);
+        return rc;
     }
-    int rc = scene_parse_text(path, text, len, out, err, errsize);
-    free(text);
+    errno = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f || lexer_init_file(&p.lx, f) != 0) {
+        int saved = errno ? errno : EIO;
+        if (saved == ENOMEM)
+            fail_oom(&p);
+        else if (err && errsize > 0)
+            snprintf(err, errsize, "tp2: cannot read '%s': %s", p.shown,
+                     strerror(saved));
+        rc = -1;
+    } else {
+        rc = reader_run(&p, out);
+    }
+    reader_end(&p);
+    if (f)
+        fclose(f);
     return rc;
 }
