@@ -264,6 +264,26 @@ static void *grow(struct scene_reader *p, void *arr, size_t *cap, size_t need,
     return bigger;
 }
 
+/* Keeps the scene's largest length and where it was written (scene.h:
+ * max_length; main.c checks it against scene_length_limit). */
+static void note_length(struct scene_reader *p, const struct token *at,
+                        double v, const char *what)
+{
+    if (fabs(v) > p->s.max_length) {
+        p->s.max_length = fabs(v);
+        p->s.max_length_line = at->line;
+        p->s.max_length_col = at->col;
+        p->s.max_length_what = what;
+    }
+}
+
+static void note_lengths(struct scene_reader *p, const struct token *at,
+                         const double v[3], const char *what)
+{
+    for (int i = 0; i < 3; i++)
+        note_length(p, at, v[i], what);
+}
+
 struct scene *read_scene(struct scene_reader *p)
 {
     return &p->s;
@@ -383,10 +403,11 @@ static int up_is_parallel(const struct scene *s)
 static int parse_camera(struct scene_reader *p)
 {
     struct scene *s = &p->s;
-    struct token center_at, up_at, fov_at;
-    if (read_numbers(p, s->eye, 3, NULL) ||
+    struct token eye_at, center_at, up_at, fov_at;
+    if (read_numbers(p, s->eye, 3, &eye_at) ||
         read_numbers(p, s->center, 3, &center_at))
         return -1;
+    note_lengths(p, &eye_at, s->eye, "camera eye");
     if (s->eye[0] == s->center[0] && s->eye[1] == s->center[1] &&
         s->eye[2] == s->center[2])
         return read_fail(p, &center_at, "center must differ from eye");
@@ -406,10 +427,14 @@ static int parse_camera(struct scene_reader *p)
 
 /* ---- lights, pigments, finishes ---------------------------------------- */
 
-static int parse_light(struct scene_reader *p, struct scene_light *l)
+/* The ambient light's position is never used, so it is not a length. */
+static int parse_light(struct scene_reader *p, struct scene_light *l, int ambient)
 {
-    if (read_numbers(p, l->pos, 3, NULL) || read_numbers(p, l->color, 3, NULL))
+    struct token at;
+    if (read_numbers(p, l->pos, 3, &at) || read_numbers(p, l->color, 3, NULL))
         return -1;
+    if (!ambient)
+        note_lengths(p, &at, l->pos, "light position");
     for (int i = 0; i < 3; i++)
         if (read_bounded(p, &l->att[i], 1,
                          "a non-negative attenuation coefficient"))
@@ -430,7 +455,7 @@ static int parse_lights(struct scene_reader *p)
         s->lights = a;
         memset(&s->lights[i], 0, sizeof s->lights[i]);
         s->nlights = i + 1;
-        if (parse_light(p, &s->lights[i]))
+        if (parse_light(p, &s->lights[i], i == 0))
             return -1;
     }
     return 0;
@@ -524,12 +549,19 @@ static int parse_object(struct scene_reader *p, struct scene_object *o)
         return -1;
     for (int k = 0; k < SHAPE_COUNT; k++)
         if (is_word(&p->tok, shape_kinds[k].keyword)) {
+            struct token at = p->tok;
             next(p);
             o->kind = k;
             o->first = s->nreals;
             int rc = shape_kinds[k].read(p);
             o->count = s->nreals - o->first;
-            return rc;
+            if (rc)
+                return rc;
+            double extent = shape_extent(k, s->reals + o->first, o->count);
+            if (extent < 0)
+                return fail_oom(p);
+            note_length(p, &at, extent, shape_kinds[k].keyword);
+            return 0;
         }
     return fail_expected(p, shape_keywords());
 }
@@ -569,9 +601,11 @@ static int parse_samples(struct scene_reader *p)
 
 static int parse_lens(struct scene_reader *p)
 {
+    struct token at = p->tok;
     if (read_bounded(p, &p->s.lens_radius, 1, "a non-negative lens radius") ||
         read_bounded(p, &p->s.lens_focal, 0, "a positive focal distance"))
         return -1;
+    note_length(p, &at, fmax(p->s.lens_radius, p->s.lens_focal), "lens");
     p->s.has_lens = 1;
     return 0;
 }
@@ -596,11 +630,13 @@ static int parse_arealight(struct scene_reader *p)
     if (s->arealight_index == 0)
         return read_fail(p, &at, "light 0 is the ambient light and cannot be "
                                "an area light");
+    struct token radius_at = p->tok;
     if (read_bounded(p, &s->arealight_radius, 0,
                      "a positive area light radius") ||
         read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
                          "sample count", &n))
         return -1;
+    note_length(p, &radius_at, s->arealight_radius, "area light radius");
     s->has_arealight = 1;
     s->arealight_samples = (int)n;
     return 0;

@@ -219,6 +219,79 @@ def case_input_numbers_across_reads(c):
              f"'{'1' * 32}...' is longer than 65536 bytes\n", f"exit {status}, stderr {err!r}")
 
 
+# Float's range (README.TXT, "Precision"; scene_length_limit in
+# host/scene.c): a sphere 1e20 away with radius 5e19, seen from the origin
+# at 90 degrees; it covers the middle of the image, the corners are the
+# gray background. In float |o - c|^2 = 1e40 is infinite and the sphere
+# vanished, exit 0.
+FAR_SCENE = """0 0 0
+0 0 -1
+0 1 0
+90
+2
+0 0 0   0.2 0.2 0.2   0 0 0
+0 0 0   1 1 1         1 0 0
+1
+solid 0 1 0
+1
+0.5 0.5 0 1  0 0 0
+1
+0 0 sphere 0 0 -1e20 %s
+"""
+
+
+def far_scene(c, radius="5e19"):
+    path = c.out("far.txt")
+    with open(path, "w") as f:
+        f.write(FAR_SCENE % radius)
+    return path
+
+
+def case_float_range_default_double(c):
+    """Lengths past float's range render in double when no --precision is
+    given, with a note naming the value and where it was written; the
+    sphere is there, green, the corners gray; --stats says double."""
+    scene = far_scene(c)
+    out = c.out("far.ppm")
+    status, _, err = run(c.tp2, [scene, out, "9", "9"])
+    want = (f"{scene}:13:5: note: a coordinate or size of 1e+20 (sphere) is beyond float "
+            f"precision's range (lengths up to 1.15e+18): rendering in double precision\n")
+    c.require(status == 0, f"exit {status}, stderr {err!r}")
+    c.expect(err == want, f"stderr {err!r}")
+    w, h, rgb = tp2test.read_ppm(out)
+    middle = tuple(rgb[3 * (4 * w + 4):3 * (4 * w + 4) + 3])
+    corner = tuple(rgb[0:3])
+    c.expect(middle[0] == 0 and middle[2] == 0 and middle[1] > 100, f"middle pixel {middle}")
+    c.expect(corner == (128, 128, 128), f"corner pixel {corner}")
+    # The same image as --precision double asked for, which says nothing.
+    status, _, err = run(c.tp2, ["--precision", "double", scene, c.out("d.ppm"), "9", "9"])
+    c.expect(status == 0 and err == "", f"--precision double: exit {status}, stderr {err!r}")
+    with open(out, "rb") as a, open(c.out("d.ppm"), "rb") as b:
+        c.expect(a.read() == b.read(), "differs from --precision double")
+    status, _, err = run(c.tp2, ["--quiet", "--stats", scene, out, "9", "9"])
+    c.expect(status == 0 and "tp2: precision  double\n" in err and "note:" not in err,
+             f"--quiet --stats: exit {status}, stderr {err!r}")
+
+
+def case_float_range_refused(c):
+    """Under --precision float such a scene is refused, naming the value
+    and its place; past double's bound (2^120) it is refused in any
+    precision. Exit 1, nothing written."""
+    scene = far_scene(c)
+    status, _, err = run(c.tp2, ["--precision", "float", scene, c.out()])
+    want = (f"{scene}:13:5: error: a coordinate or size of 1e+20 (sphere) is beyond float "
+            f"precision's range (lengths up to 1.15e+18); leave out --precision float to "
+            f"render it in double\n")
+    c.expect(status == 1 and err == want, f"--precision float: exit {status}, stderr {err!r}")
+    scene = far_scene(c, "1e37")
+    for options in ([], ["--precision", "double"]):
+        status, _, err = run(c.tp2, options + [scene, c.out()])
+        want = (f"{scene}:13:5: error: a coordinate or size of 1e+37 (sphere) is beyond what "
+                f"tp2 can render (lengths up to 1.33e+36, in double precision)\n")
+        c.expect(status == 1 and err == want, f"{options}: exit {status}, stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == ["far.txt"], f"left {os.listdir(c.tmp)}")
+
+
 def case_obj_name_escaped(c):
     """An OBJ file's name in its own FILE:LINE:COL errors is escaped too."""
     name = "me\x1bsh\x7f.obj"

@@ -457,6 +457,25 @@ static void test_token_limit(void)
     free(text);
 }
 
+/* The largest length the shaders get, and where (scene_length_limit):
+ * object numbers as packed (a plane's normal is scaled to 1), not the
+ * ambient light's unused position. */
+static void test_max_length(void)
+{
+    struct scene s = parse_ok(CAM "2\n5e30 0 0 1 1 1 0 0 0\n3 -40 0 1 1 1 1 0 0\n" PIGS FINS
+                              "2\n0 0 plane 0 0 1e30 2e30\n0 0 sphere 0 0 -5 1\n",
+                              __LINE__);
+    CHECK(s.max_length == 40 && s.max_length_line == 7 && s.max_length_col == 1);
+    CHECK(s.max_length_what && strcmp(s.max_length_what, "light position") == 0);
+    scene_free(&s);
+    s = parse_ok(CAM LIGHTS PIGS FINS "2\n0 0 plane 0 0 1e-30 2e30\n"
+                 "0 0 sphere 0 0 -5 1e20\nlens 0 1e21\n", __LINE__);
+    CHECK(s.max_length == 2e60 && s.max_length_line == 13 && s.max_length_col == 5);
+    CHECK(s.max_length_what && strcmp(s.max_length_what, "plane") == 0);
+    scene_free(&s);
+    CHECK(scene_length_limit(false) == 0x1p60 && scene_length_limit(true) == 0x1p120);
+}
+
 static void test_api_edges(void)
 {
     struct scene s;
@@ -791,6 +810,7 @@ int main(void)
     test_unterminated_buffer();
     test_streamed_window();
     test_token_limit();
+    test_max_length();
     test_api_edges();
     test_lexical_errors();
     test_byte_errors();
