@@ -166,14 +166,25 @@ def case_input_endless(c):
 
 
 def case_input_sparse_gib(c):
-    """A 1 GiB file of NUL bytes (sparse: no disk) fails at 1:1 at once."""
+    """A 1 GiB file of NUL bytes (sparse: no disk) fails at 1:1 at once;
+    a 2 GiB texture is refused at its texmap without being read."""
     big = c.out("big.txt")
     with open(big, "wb") as f:
         f.truncate(1 << 30)
     status, err = run_bounded(c, [big, c.out()])
     c.expect(status == 1 and err == f"{big}:1:1: error: unexpected character '\\x00'\n",
              f"exit {status}, stderr {err!r}")
-    c.expect(os.listdir(c.tmp) == ["big.txt"], f"left {os.listdir(c.tmp)}")
+    # A texture file past 1 GiB is refused unread, at its texmap.
+    scene = c.out("scene.txt")
+    with open(scene, "w") as f:
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n"
+                "1\ntexmap big.txt 1 0 0 0 0 1 0 0\n1\n1 0 0 1 0 0 1\n0\n")
+    with open(big, "wb") as f:
+        f.truncate(2 << 30)
+    status, err = run_bounded(c, [scene, c.out()])
+    c.expect(status == 1 and err == f"{scene}:8:8: error: cannot read texture 'big.txt': "
+             f"{os.strerror(27)}\n", f"texture: exit {status}, stderr {err!r}")
+    c.expect(sorted(os.listdir(c.tmp)) == ["big.txt", "scene.txt"], f"left {os.listdir(c.tmp)}")
 
 
 def case_input_garbage_after_scene(c):
