@@ -100,6 +100,7 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
                                v ? v : "nothing");
     } else if (strcmp(opt, "--precision") == 0) {
         v = option_value(argc, argv, i);
+        c->precision_given = true;
         if (v && strcmp(v, "double") == 0)
             c->use_double = true;
         else if (v && strcmp(v, "float") == 0)

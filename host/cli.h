@@ -14,6 +14,8 @@ struct cli {
     double bailout;    /* --bailout: least weight of a traced ray; 0: all
                         * are traced; default 1/255, 0 with --precision double */
     bool use_double;   /* --precision double */
+    bool precision_given; /* --precision, either: else main.c may choose
+                           * double for a scene float cannot carry */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */

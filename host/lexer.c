@@ -1,6 +1,7 @@
 /* lexer.c: tokens with positions; see lexer.h for the rules. */
 #include "lexer.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -27,36 +28,97 @@ static int is_delim(char c)
 /* The UTF-8 byte-order mark that Windows editors put before the text. */
 static const char utf8_bom[3] = {'\xef', '\xbb', '\xbf'};
 
-int lexer_init(struct lexer *lx, const char *text, size_t len)
+/* The window keeps LOOKAHEAD bytes from each token's start (or all that is
+ * left): a whole token of up to LEXER_TOKEN_MAX bytes, and past it the few
+ * bytes strtod looks at before it settles ("1e+" is 1 once it sees what
+ * follows), so no token is ever cut by where a read stopped. A refill
+ * reads at least CHUNK bytes. */
+#define LOOKAHEAD (LEXER_TOKEN_MAX + 16)
+#define CHUNK ((size_t)1 << 16)
+
+/* Reads from the source into buf[len..cap); sets eof at its end. */
+static void read_more(struct lexer *lx)
 {
-    memset(lx, 0, sizeof *lx);
-    if (len >= sizeof utf8_bom && memcmp(text, utf8_bom, sizeof utf8_bom) == 0) {
-        text += sizeof utf8_bom; /* not part of the text: column 1 follows it */
-        len -= sizeof utf8_bom;
+    size_t room = lx->cap - lx->len, n;
+    if (lx->file) {
+        errno = 0;
+        n = fread(lx->buf + lx->len, 1, room, lx->file);
+        if (n < room) { /* fread stops short only at the end or an error */
+            lx->eof = 1;
+            if (ferror(lx->file))
+                lx->read_errno = errno ? errno : EIO;
+        }
+    } else {
+        n = lx->mem_len - lx->mem_pos < room ? lx->mem_len - lx->mem_pos : room;
+        if (n > 0)
+            memcpy(lx->buf + lx->len, lx->mem + lx->mem_pos, n);
+        lx->mem_pos += n;
+        lx->eof = lx->mem_pos == lx->mem_len;
     }
+    lx->len += n;
+    lx->buf[lx->len] = '\0';
+}
+
+/* Makes buf hold LOOKAHEAD bytes from pos, or the rest of the text, by
+ * dropping what comes before pos and reading on. */
+static void fill(struct lexer *lx)
+{
+    if (lx->eof || lx->len - lx->pos >= LOOKAHEAD)
+        return;
+    memmove(lx->buf, lx->buf + lx->pos, lx->len - lx->pos);
+    lx->len -= lx->pos;
+    lx->pos = 0;
+    read_more(lx);
+}
+
+static int start(struct lexer *lx)
+{
     lx->line = 1;
     lx->col = 1;
-    if (len == SIZE_MAX) /* no room for the NUL */
+    lx->cap = LOOKAHEAD + CHUNK;
+    lx->buf = malloc(lx->cap + 1);
+    lx->text[0] = malloc(LEXER_TOKEN_MAX + 2);
+    lx->text[1] = malloc(LEXER_TOKEN_MAX + 2);
+    if (!lx->buf || !lx->text[0] || !lx->text[1]) {
+        errno = ENOMEM;
         return -1;
-    lx->buf = malloc(len + 1);
-    if (!lx->buf)
+    }
+    lx->text[0][0] = lx->text[1][0] = '\0';
+    read_more(lx);
+    if (lx->read_errno) {
+        errno = lx->read_errno;
         return -1;
-    if (len > 0)
-        memcpy(lx->buf, text, len);
-    lx->buf[len] = '\0';
-    lx->len = len;
+    }
+    if (lx->len >= sizeof utf8_bom && memcmp(lx->buf, utf8_bom, sizeof utf8_bom) == 0)
+        lx->pos = sizeof utf8_bom; /* not part of the text: column 1 follows it */
     return 0;
+}
+
+int lexer_init_text(struct lexer *lx, const char *text, size_t len)
+{
+    memset(lx, 0, sizeof *lx);
+    lx->mem = text;
+    lx->mem_len = len;
+    return start(lx);
+}
+
+int lexer_init_file(struct lexer *lx, FILE *f)
+{
+    memset(lx, 0, sizeof *lx);
+    lx->file = f;
+    return start(lx);
 }
 
 void lexer_free(struct lexer *lx)
 {
     free(lx->buf);
-    lx->buf = NULL;
-    lx->len = 0;
-    lx->pos = 0;
+    free(lx->text[0]);
+    free(lx->text[1]);
+    lx->buf = lx->text[0] = lx->text[1] = NULL;
+    lx->len = lx->pos = 0;
 }
 
-/* Moves n bytes on, keeping line and column. */
+/* Moves n bytes on (all in the window), keeping line and column. */
 static void advance(struct lexer *lx, size_t n)
 {
     for (size_t i = 0; i < n && lx->pos < lx->len; i++) {
@@ -69,21 +131,25 @@ static void advance(struct lexer *lx, size_t n)
     }
 }
 
-/* Skips white space and comments. A comment stops at a NUL byte too, so
- * that a NUL anywhere is reported. */
+/* Skips white space and comments, reading on as needed. A comment stops
+ * at a NUL byte too, so that a NUL anywhere is reported. */
 static void skip_blank(struct lexer *lx)
 {
-    while (lx->pos < lx->len) {
-        char c = lx->buf[lx->pos];
-        if (is_space(c)) {
-            advance(lx, 1);
-        } else if (c == '#') {
-            while (lx->pos < lx->len && lx->buf[lx->pos] != '\n' &&
-                   lx->buf[lx->pos] != '\0')
-                advance(lx, 1);
-        } else {
-            break;
+    int comment = 0;
+    for (;;) {
+        if (lx->pos == lx->len) {
+            fill(lx);
+            if (lx->pos == lx->len)
+                return;
         }
+        char c = lx->buf[lx->pos];
+        if (c == '#')
+            comment = 1;
+        else if (c == '\n')
+            comment = 0;
+        else if (c == '\0' || (!comment && !is_space(c)))
+            return;
+        advance(lx, 1);
     }
 }
 
@@ -113,25 +179,50 @@ static size_t run_end(const struct lexer *lx, size_t pos)
     return pos;
 }
 
-/* Makes *tok the sticky error token; message gets the quoted bytes. */
+/* Gives *tok (at pos) its text: a copy of len bytes, kept while the
+ * window moves on. An error token's is cut after LEXER_TOKEN_MAX + 1. */
+static void set_text(struct lexer *lx, struct token *tok, size_t len)
+{
+    if (len > LEXER_TOKEN_MAX + 1)
+        len = LEXER_TOKEN_MAX + 1;
+    char *t = lx->text[lx->slot];
+    memcpy(t, lx->buf + lx->pos, len);
+    t[len] = '\0';
+    tok->text = t;
+    tok->len = len;
+}
+
+/* Makes *tok the sticky error token of len bytes at pos; message gets
+ * what, the quoted bytes, then suffix. */
 static void fail(struct lexer *lx, struct token *tok, size_t len,
                  const char *what, const char *suffix)
 {
     char quoted[LEXER_QUOTE_SIZE];
-    lexer_quote(tok->text, len, quoted, sizeof quoted);
+    set_text(lx, tok, len);
+    lexer_quote(tok->text, tok->len, quoted, sizeof quoted);
     snprintf(lx->message, sizeof lx->message, "%s%s%s", what, quoted, suffix);
     tok->kind = TOKEN_ERROR;
-    tok->len = len;
     lx->failed = 1;
     lx->error = *tok;
 }
 
+static void fail_long(struct lexer *lx, struct token *tok, size_t len)
+{
+    char suffix[64];
+    snprintf(suffix, sizeof suffix, " is longer than %d bytes", LEXER_TOKEN_MAX);
+    fail(lx, tok, len, "token ", suffix);
+}
+
 static void lex_word(struct lexer *lx, struct token *tok)
 {
-    size_t end = run_end(lx, lx->pos);
+    size_t n = run_end(lx, lx->pos) - lx->pos;
+    if (n > LEXER_TOKEN_MAX) {
+        fail_long(lx, tok, n);
+        return;
+    }
     tok->kind = TOKEN_WORD;
-    tok->len = end - lx->pos;
-    advance(lx, tok->len);
+    set_text(lx, tok, n);
+    advance(lx, n);
 }
 
 /* A number of n bytes starts at pos. What follows must end it: a delimiter
@@ -141,6 +232,10 @@ static void lex_number(struct lexer *lx, struct token *tok, size_t n,
                        double value)
 {
     size_t after = lx->pos + n;
+    if (n > LEXER_TOKEN_MAX) {
+        fail_long(lx, tok, n);
+        return;
+    }
     if (after < lx->len && !is_delim(lx->buf[after]) &&
         number_length(lx, after, NULL) == 0) {
         fail(lx, tok, run_end(lx, lx->pos) - lx->pos, "malformed number ", "");
@@ -151,8 +246,8 @@ static void lex_number(struct lexer *lx, struct token *tok, size_t n,
         return;
     }
     tok->kind = TOKEN_NUMBER;
-    tok->len = n;
     tok->value = value;
+    set_text(lx, tok, n);
     advance(lx, n);
 }
 
@@ -163,10 +258,21 @@ void lexer_next(struct lexer *lx, struct token *tok)
         return;
     }
     skip_blank(lx);
+    fill(lx); /* the whole token is in the window from here on */
     memset(tok, 0, sizeof *tok);
+    lx->slot ^= 1;
+    lx->tok_pos = lx->pos;
     tok->line = lx->line;
     tok->col = lx->col;
-    tok->text = lx->buf + lx->pos;
+    set_text(lx, tok, 0);
+    if (lx->read_errno) { /* at the token where the text stopped */
+        snprintf(lx->message, sizeof lx->message, "cannot read further: %s",
+                 strerror(lx->read_errno));
+        tok->kind = TOKEN_ERROR;
+        lx->failed = 1;
+        lx->error = *tok;
+        return;
+    }
     if (lx->pos >= lx->len) {
         tok->kind = TOKEN_EOF;
         return;
@@ -185,9 +291,9 @@ void lexer_next(struct lexer *lx, struct token *tok)
 
 void lexer_rescan_word(struct lexer *lx, struct token *tok)
 {
-    if (tok->kind == TOKEN_EOF || tok->text[0] == '\0')
+    if (tok->kind == TOKEN_EOF || tok->text[0] == '\0' || lx->read_errno)
         return;
-    lx->pos = (size_t)(tok->text - lx->buf);
+    lx->pos = lx->tok_pos;
     lx->line = tok->line;
     lx->col = tok->col;
     lx->failed = 0;
@@ -198,8 +304,8 @@ int token_is_nonfinite_word(const struct token *tok)
 {
     if (tok->kind != TOKEN_WORD || tok->len == 0)
         return 0;
-    /* The word ends at a delimiter inside the NUL-terminated copy, and no
-     * form strtod accepts crosses one, so this stays inside the word. */
+    /* The word's copy ends with a NUL, and no form strtod accepts crosses
+     * a delimiter, so this stays inside the word. */
     char *end = NULL;
     double v = strtod(tok->text, &end);
     return (size_t)(end - tok->text) == tok->len && !isfinite(v);

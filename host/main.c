@@ -33,13 +33,61 @@ static void image_size(const struct cli *c, const struct scene *s, int *w, int *
     }
 }
 
+/* Where the scene's largest length was written, and what it is, for
+ * messages about float's range (scene.c, scene_length_limit). */
+struct range_note {
+    char where[64 + 4 * 4096]; /* FILE:LINE:COL, the name escaped */
+    char what[192];
+};
+
+/* Precision for s (scene_length_limit has the rule): double where float
+ * cannot carry its lengths and --precision float was not asked for, in
+ * which case *note is filled; refused (one message, -1) when the lengths
+ * are past even double's bound, or past float's under --precision float. */
+static int choose_precision(const struct cli *c, const struct scene *s, bool *use_double,
+                            struct range_note *note, bool *noted)
+{
+    double fmax_len = scene_length_limit(false), dmax_len = scene_length_limit(true);
+    *use_double = c->use_double;
+    *noted = false;
+    if (s->max_length <= fmax_len)
+        return 0;
+    char *shown = lexer_escape(c->infile);
+    snprintf(note->where, sizeof note->where, "%s:%zu:%zu", shown ? shown : "?",
+             s->max_length_line, s->max_length_col);
+    free(shown);
+    if (s->max_length > dmax_len) {
+        fprintf(stderr, "%s: error: a coordinate or size of %.3g (%s) is beyond what "
+                        "tp2 can render (lengths up to %.3g, in double precision)\n",
+                note->where, s->max_length, s->max_length_what, dmax_len);
+        return -1;
+    }
+    if (!c->use_double && c->precision_given) {
+        fprintf(stderr, "%s: error: a coordinate or size of %.3g (%s) is beyond float "
+                        "precision's range (lengths up to %.3g); leave out --precision "
+                        "float to render it in double\n",
+                note->where, s->max_length, s->max_length_what, fmax_len);
+        return -1;
+    }
+    if (!c->use_double) {
+        snprintf(note->what, sizeof note->what, "a coordinate or size of %.3g (%s) is beyond "
+                 "float precision's range (lengths up to %.3g)", s->max_length,
+                 s->max_length_what, fmax_len);
+        *use_double = true;
+        *noted = true;
+    }
+    return 0;
+}
+
 /* --stats: where the time went and how many rays it bought. */
-static void print_stats(const struct render_stats *st, double parse, double write)
+static void print_stats(const struct render_stats *st, double parse, double write,
+                        bool use_double)
 {
     static const char *kinds[TP2_STAT_COUNT] = {"camera", "shadow", "reflected",
                                                 "transmitted"};
     uint64_t total = 0;
     fprintf(stderr, "tp2: device     %s\n", st->device_name);
+    fprintf(stderr, "tp2: precision  %s\n", use_double ? "double" : "float");
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh "
                     "and upload)\n", st->device);
@@ -74,23 +122,39 @@ static int write_rows(void *writer, const float *rgba, int first, int count)
  * the render, then streams the rows into it as bands finish. */
 static int render_to_file(const struct cli *c, const struct scene *s, double parse_time)
 {
+    struct range_note *note = malloc(sizeof *note);
+    bool use_double, noted;
+    if (!note) {
+        fputs("tp2: out of memory\n", stderr);
+        return EXIT_FAILURE;
+    }
+    if (choose_precision(c, s, &use_double, note, &noted) != 0) {
+        free(note);
+        return EXIT_FAILURE;
+    }
     struct render_options opt = {
         .device_index = c->device_index,
         .samples = c->samples,
         .bvh_min = c->bvh_min,
         .bailout = c->bailout,
-        .use_double = c->use_double,
+        .use_double = use_double,
+        .double_where = noted ? note->where : NULL,
+        .double_what = noted ? note->what : NULL,
         .validate = c->validate,
         .count_rays = c->stats,
         .progress = !c->quiet,
+        .quiet = c->quiet,
     };
     struct render_stats stats;
     image_size(c, s, &opt.width, &opt.height);
     struct image_writer *w = image_writer_open(c->outfile, image_format_of(c->outfile),
                                                opt.width, opt.height);
-    if (!w)
+    if (!w) {
+        free(note);
         return EXIT_FAILURE;
+    }
     int rc = render_scene(s, &opt, write_rows, w, &stats);
+    free(note);
     if (rc == 0 && vkc_validation_message_count() > 0) {
         fprintf(stderr, "tp2: %u validation message(s); no image written\n",
                 vkc_validation_message_count());
@@ -104,7 +168,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
     if (image_writer_finish(w) != 0)
         return EXIT_FAILURE;
     if (c->stats)
-        print_stats(&stats, parse_time, stats.write + clock_seconds() - t0);
+        print_stats(&stats, parse_time, stats.write + clock_seconds() - t0, use_double);
     return EXIT_SUCCESS;
 }
 

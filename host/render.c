@@ -682,7 +682,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     struct packed_scene packed = {0};
     struct vkc_options vk_opt = {
         .device_index = opt->device_index,
-        .need_float64 = opt->use_double,
+        .need_float64 = opt->use_double && !opt->double_where,
+        .want_float64 = opt->use_double,
         .validate = opt->validate,
     };
     struct pack_options pack_opt = {
@@ -707,6 +708,15 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         pthread_join(thread, NULL);
     if (job.rc != 0 || check_band_fits(&r.vk, opt->width) != 0)
         goto done;
+    if (opt->double_where && !r.vk.float64) {
+        fprintf(stderr, "%s: error: %s, and device '%s' has no shaderFloat64 to render "
+                        "it in double; choose another with --device (lavapipe has it)\n",
+                opt->double_where, opt->double_what, r.vk.props.deviceName);
+        goto done;
+    }
+    if (opt->double_where && !opt->quiet)
+        fprintf(stderr, "%s: note: %s: rendering in double precision\n",
+                opt->double_where, opt->double_what);
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
     if (packed_rc != 0) {
         fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the device\n",

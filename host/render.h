@@ -15,9 +15,15 @@ struct render_options {
     int bvh_min;       /* BVH from this many spheres; 0: the default */
     double bailout;    /* least weight of a traced ray; 0: the exact model */
     bool use_double;   /* double-precision geometry: the reference image */
+    /* Set when use_double was chosen for the scene's range, not asked for:
+     * where its largest length was written ("FILE:LINE:COL") and what it
+     * is. Without shaderFloat64 the render is then refused naming them;
+     * with it, a note says so (unless quiet). */
+    const char *double_where, *double_what;
     bool validate;     /* Khronos validation layer on, messages counted */
     bool count_rays;   /* fill render_stats.rays (costs a little speed) */
     bool progress;     /* draw a progress bar on stderr after a second */
+    bool quiet;        /* no note about the precision chosen */
 };
 
 /* Wall times of the phases, in seconds, and rays traced by kind. Bands

@@ -6,6 +6,7 @@
 #ifndef TP2_SCENE_H
 #define TP2_SCENE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -87,7 +88,19 @@ struct scene {
     size_t arealight_index;
     double arealight_radius;
     int arealight_samples;
+
+    /* The largest magnitude among the lengths the shaders get (camera
+     * eye, light positions, every number of every object's GPU records,
+     * lens and area light sizes), and where it was written: what
+     * scene_length_limit is checked against. what names it ("sphere"). */
+    double max_length;
+    size_t max_length_line, max_length_col;
+    const char *max_length_what; /* static; NULL while max_length is 0 */
 };
+
+/* The largest length (coordinate or size, in magnitude) that renders
+ * faithfully in each precision; see scene.c for why. */
+double scene_length_limit(bool use_double);
 
 /* The numbers of object o. */
 static inline const double *scene_object_reals(const struct scene *s,

@@ -31,6 +31,7 @@ struct scene_reader {
     const char *name;
     char *dir;         /* the scene file's folder, for the files it names */
     const char *shown; /* name as messages show it (lexer_escape) */
+    char *shown_copy;  /* what shown points to, unless out of memory */
     char *err;
     size_t errsize;
     struct scene s;
@@ -263,6 +264,26 @@ static void *grow(struct scene_reader *p, void *arr, size_t *cap, size_t need,
     return bigger;
 }
 
+/* Keeps the scene's largest length and where it was written (scene.h:
+ * max_length; main.c checks it against scene_length_limit). */
+static void note_length(struct scene_reader *p, const struct token *at,
+                        double v, const char *what)
+{
+    if (fabs(v) > p->s.max_length) {
+        p->s.max_length = fabs(v);
+        p->s.max_length_line = at->line;
+        p->s.max_length_col = at->col;
+        p->s.max_length_what = what;
+    }
+}
+
+static void note_lengths(struct scene_reader *p, const struct token *at,
+                         const double v[3], const char *what)
+{
+    for (int i = 0; i < 3; i++)
+        note_length(p, at, v[i], what);
+}
+
 struct scene *read_scene(struct scene_reader *p)
 {
     return &p->s;
@@ -382,10 +403,11 @@ static int up_is_parallel(const struct scene *s)
 static int parse_camera(struct scene_reader *p)
 {
     struct scene *s = &p->s;
-    struct token center_at, up_at, fov_at;
-    if (read_numbers(p, s->eye, 3, NULL) ||
+    struct token eye_at, center_at, up_at, fov_at;
+    if (read_numbers(p, s->eye, 3, &eye_at) ||
         read_numbers(p, s->center, 3, &center_at))
         return -1;
+    note_lengths(p, &eye_at, s->eye, "camera eye");
     if (s->eye[0] == s->center[0] && s->eye[1] == s->center[1] &&
         s->eye[2] == s->center[2])
         return read_fail(p, &center_at, "center must differ from eye");
@@ -405,10 +427,14 @@ static int parse_camera(struct scene_reader *p)
 
 /* ---- lights, pigments, finishes ---------------------------------------- */
 
-static int parse_light(struct scene_reader *p, struct scene_light *l)
+/* The ambient light's position is never used, so it is not a length. */
+static int parse_light(struct scene_reader *p, struct scene_light *l, int ambient)
 {
-    if (read_numbers(p, l->pos, 3, NULL) || read_numbers(p, l->color, 3, NULL))
+    struct token at;
+    if (read_numbers(p, l->pos, 3, &at) || read_numbers(p, l->color, 3, NULL))
         return -1;
+    if (!ambient)
+        note_lengths(p, &at, l->pos, "light position");
     for (int i = 0; i < 3; i++)
         if (read_bounded(p, &l->att[i], 1,
                          "a non-negative attenuation coefficient"))
@@ -429,7 +455,7 @@ static int parse_lights(struct scene_reader *p)
         s->lights = a;
         memset(&s->lights[i], 0, sizeof s->lights[i]);
         s->nlights = i + 1;
-        if (parse_light(p, &s->lights[i]))
+        if (parse_light(p, &s->lights[i], i == 0))
             return -1;
     }
     return 0;
@@ -523,12 +549,19 @@ static int parse_object(struct scene_reader *p, struct scene_object *o)
         return -1;
     for (int k = 0; k < SHAPE_COUNT; k++)
         if (is_word(&p->tok, shape_kinds[k].keyword)) {
+            struct token at = p->tok;
             next(p);
             o->kind = k;
             o->first = s->nreals;
             int rc = shape_kinds[k].read(p);
             o->count = s->nreals - o->first;
-            return rc;
+            if (rc)
+                return rc;
+            double extent = shape_extent(k, s->reals + o->first, o->count);
+            if (extent < 0)
+                return fail_oom(p);
+            note_length(p, &at, extent, shape_kinds[k].keyword);
+            return 0;
         }
     return fail_expected(p, shape_keywords());
 }
@@ -568,9 +601,11 @@ static int parse_samples(struct scene_reader *p)
 
 static int parse_lens(struct scene_reader *p)
 {
+    struct token at = p->tok;
     if (read_bounded(p, &p->s.lens_radius, 1, "a non-negative lens radius") ||
         read_bounded(p, &p->s.lens_focal, 0, "a positive focal distance"))
         return -1;
+    note_length(p, &at, fmax(p->s.lens_radius, p->s.lens_focal), "lens");
     p->s.has_lens = 1;
     return 0;
 }
@@ -595,11 +630,13 @@ static int parse_arealight(struct scene_reader *p)
     if (s->arealight_index == 0)
         return read_fail(p, &at, "light 0 is the ambient light and cannot be "
                                "an area light");
+    struct token radius_at = p->tok;
     if (read_bounded(p, &s->arealight_radius, 0,
                      "a positive area light radius") ||
         read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
                          "sample count", &n))
         return -1;
+    note_length(p, &radius_at, s->arealight_radius, "area light radius");
     s->has_arealight = 1;
     s->arealight_samples = (int)n;
     return 0;
@@ -656,92 +693,81 @@ static int parse_scene(struct scene_reader *p)
     return 0;
 }
 
+/* Sets up p to read a scene called name (NULL: "<input>") into out, with
+ * messages to err; -1 when out of memory (reported). */
+static int reader_begin(struct scene_reader *p, const char *name,
+                        struct scene *out, char *err, size_t errsize)
+{
+    memset(p, 0, sizeof *p);
+    memset(out, 0, sizeof *out);
+    p->name = name ? name : "<input>";
+    p->err = err;
+    p->errsize = errsize;
+    if (err && errsize > 0)
+        err[0] = '\0';
+    p->shown_copy = lexer_escape(p->name);
+    p->shown = p->shown_copy ? p->shown_copy : "?";
+    p->dir = folder_of(p->name);
+    return p->shown_copy && p->dir ? 0 : fail_oom(p);
+}
+
+/* Parses what p's lexer gives, then frees p. */
+static int reader_run(struct scene_reader *p, struct scene *out)
+{
+    next(p);
+    int rc = parse_scene(p);
+    if (rc == 0)
+        *out = p->s;
+    else
+        scene_free(&p->s);
+    return rc;
+}
+
+static void reader_end(struct scene_reader *p)
+{
+    lexer_free(&p->lx);
+    free(p->dir);
+    free(p->shown_copy);
+}
+
 int scene_parse_text(const char *name, const char *text, size_t len,
                      struct scene *out, char *err, size_t errsize)
 {
     struct scene_reader p;
-    memset(&p, 0, sizeof p);
-    memset(out, 0, sizeof *out);
-    p.name = name ? name : "<input>";
-    char *shown = lexer_escape(p.name);
-    p.shown = shown ? shown : "?";
-    p.err = err;
-    p.errsize = errsize;
-    if (err && errsize > 0)
-        err[0] = '\0';
-    p.dir = folder_of(p.name);
-    if (!shown || !p.dir || lexer_init(&p.lx, text, len)) {
-        lexer_free(&p.lx);
-        fail_oom(&p);
-        free(p.dir);
-        free(shown);
-        return -1;
-    }
-    next(&p);
-    int rc = parse_scene(&p);
-    lexer_free(&p.lx);
-    free(p.dir);
-    free(shown);
-    if (rc) {
-        scene_free(&p.s);
-        return -1;
-    }
-    *out = p.s;
-    return 0;
+    int rc = reader_begin(&p, name, out, err, errsize);
+    if (rc == 0 && lexer_init_text(&p.lx, text, len) != 0)
+        rc = fail_oom(&p);
+    if (rc == 0)
+        rc = reader_run(&p, out);
+    reader_end(&p);
+    return rc;
 }
 
-/* Reads a whole file into a malloc'd buffer. Returns 0, or -1 with errno
- * saying why. */
-static int read_all(const char *path, char **text, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return -1;
-    errno = 0;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    int saved = ENOMEM;
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (ferror(f)) {
-            saved = errno ? errno : EIO;
-            break;
-        }
-        if (n < cap) { /* fread stopped short without an error: end */
-            fclose(f);
-            *text = buf;
-            *len = n;
-            return 0;
-        }
-        char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-        if (!bigger)
-            break;
-        buf = bigger;
-        cap *= 2;
-    }
-    free(buf);
-    fclose(f);
-    errno = saved;
-    return -1;
-}
-
+/* The text streams from the file (lexer.h): it is never held whole. */
 int scene_parse_file(const char *path, struct scene *out, char *err,
                      size_t errsize)
 {
-    char *text = NULL;
-    size_t len = 0;
-    memset(out, 0, sizeof *out);
-    errno = 0;
-    if (read_all(path, &text, &len)) {
-        int saved = errno;
-        char *shown = lexer_escape(path);
-        if (err && errsize > 0)
-            snprintf(err, errsize, "tp2: cannot read '%s': %s", shown ? shown : "?",
-                     strerror(saved));
-        free(shown);
-        return -1;
+    struct scene_reader p;
+    int rc = reader_begin(&p, path, out, err, errsize);
+    if (rc != 0) {
+        reader_end(&p);
+        return rc;
     }
-    int rc = scene_parse_text(path, text, len, out, err, errsize);
-    free(text);
+    errno = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f || lexer_init_file(&p.lx, f) != 0) {
+        int saved = errno ? errno : EIO;
+        if (saved == ENOMEM)
+            fail_oom(&p);
+        else if (err && errsize > 0)
+            snprintf(err, errsize, "tp2: cannot read '%s': %s", p.shown,
+                     strerror(saved));
+        rc = -1;
+    } else {
+        rc = reader_run(&p, out);
+    }
+    reader_end(&p);
+    if (f)
+        fclose(f);
     return rc;
 }

@@ -569,6 +569,29 @@ const struct shape_kind shape_kinds[SHAPE_COUNT] = {
                     triangle_bounds, no_extra, triangle_pack},
 };
 
+double shape_extent(int k, const double *p, size_t n)
+{
+    const struct shape_kind *kind = &shape_kinds[k];
+    size_t rows = kind->extra_rows(p, n);
+    double (*extra)[4] = calloc(rows ? rows : 1, sizeof *extra);
+    if (!extra)
+        return -1;
+    double m = 0;
+    for (size_t i = 0, prims = kind->primitives(p, n); i < prims; i++) {
+        struct shape_record rec;
+        memset(&rec, 0, sizeof rec);
+        kind->pack(p, n, i, &rec, extra);
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++)
+                m = fmax(m, fabs(rec.row[r][c]));
+        for (size_t r = 0; r < rows; r++)
+            for (int c = 0; c < 4; c++)
+                m = fmax(m, fabs(extra[r][c]));
+    }
+    free(extra);
+    return m;
+}
+
 const char *shape_keywords(void)
 {
     static char text[256];

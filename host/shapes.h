@@ -58,6 +58,12 @@ struct shape_kind {
 
 extern const struct shape_kind shape_kinds[SHAPE_COUNT];
 
+/* The largest magnitude among the numbers an object of kind k with numbers
+ * p[0..n) packs into (its records and extra rows, as the GPU gets them):
+ * lengths, unit vectors and a quadric's coefficients scaled to at most 1.
+ * -1 when out of memory. */
+double shape_extent(int k, const double *p, size_t n);
+
 /* "'sphere', 'plane', ... or 'mesh'", for "expected ..." messages. */
 const char *shape_keywords(void);
 

@@ -1,4 +1,5 @@
 /* texture.c: image files to 8-bit RGB texels (see texture.h). */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include "texture.h"
 
 #include <errno.h>
@@ -6,11 +7,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include <stb_image.h>
 
-/* Largest image file read: far above any real texture (a 32 Mi-texel
- * image as 16-bit ASCII PPM is about 600 MB). */
+/* Largest image file read (a larger one is refused: "File too large"):
+ * far above any real texture (a 32 Mi-texel image as 16-bit ASCII PPM is
+ * about 600 MB). */
 #define TEXTURE_MAX_FILE ((size_t)1 << 30)
 
 static int why_said(char *why, size_t size, const char *text)
@@ -118,6 +121,13 @@ static unsigned char *read_file(const char *path, size_t *len)
     FILE *f = fopen(path, "rb");
     if (!f)
         return NULL;
+    struct stat st; /* a file known to be too large is refused unread */
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) &&
+        (uintmax_t)st.st_size >= TEXTURE_MAX_FILE) {
+        fclose(f);
+        errno = EFBIG;
+        return NULL;
+    }
     size_t cap = 1 << 16, n = 0;
     unsigned char *buf = malloc(cap);
     while (buf) {

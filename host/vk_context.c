@@ -373,7 +373,8 @@ static int create_device(struct vkc *c, const struct vkc_options *opt)
                 c->props.deviceName);
         return -1;
     }
-    VkPhysicalDeviceFeatures want = {.shaderFloat64 = opt->need_float64};
+    c->float64 = have.shaderFloat64 && (opt->need_float64 || opt->want_float64);
+    VkPhysicalDeviceFeatures want = {.shaderFloat64 = c->float64};
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,

@@ -8,7 +8,8 @@
 
 struct vkc_options {
     int device_index; /* index from vkc_list_devices(), or -1: the best */
-    bool need_float64;
+    bool need_float64; /* fail without shaderFloat64 */
+    bool want_float64; /* enable shaderFloat64 where the device has it */
     bool validate; /* enable VK_LAYER_KHRONOS_validation and count messages */
 };
 
@@ -21,6 +22,7 @@ struct vkc {
     VkDevice device;
     VkQueue queue;
     uint32_t queue_family;
+    bool float64; /* shaderFloat64 is enabled */
 };
 
 /* Creates the instance and device. Returns 0, or -1 after printing one

@@ -124,6 +124,185 @@ def case_names_escaped(c):
     c.expect(os.listdir(c.tmp) == [], f"left {os.listdir(c.tmp)}")
 
 
+# Input that never ends or is huge is refused as soon as its text shows
+# the error, in bounded memory (README.TXT, "Input limits"): tp2 streams the
+# scene, it does not read it whole. Before, /dev/zero grew past 4 GB and a
+# 1 GiB file cost 2.1 GB and 5 s.
+ENDLESS_SECONDS = 5      # each run, generous for a loaded machine and ASan
+ENDLESS_RSS_KB = 100_000 # peak RSS of any tp2 run of the case
+
+
+def run_bounded(c, args):
+    """Runs tp2 (killed after 30 s); returns (status, stderr) and checks
+    the time it took and the peak RSS of the tp2 runs so far."""
+    import resource
+    import time
+    t0 = time.monotonic()
+    try:
+        status, _, err = run(c.tp2, args, timeout=30)
+    except subprocess.TimeoutExpired:
+        status, err = None, "(killed after 30 s)"
+    seconds = time.monotonic() - t0
+    rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    c.expect(seconds < ENDLESS_SECONDS, f"{args[0]}: took {seconds:.1f} s")
+    c.expect(rss < ENDLESS_RSS_KB, f"{args[0]}: peak RSS {rss} KB")
+    return status, err
+
+
+def case_input_endless(c):
+    """/dev/zero and /dev/urandom: a positioned error at once, exit 1, no
+    output, little memory."""
+    import re
+    for src, want in (("/dev/zero", "/dev/zero:1:1: error: unexpected character '\\x00'\n"),
+                      ("/dev/urandom", None)):
+        status, err = run_bounded(c, [src, c.out()])
+        c.expect(status == 1, f"{src}: exit {status}")
+        if want:
+            c.expect(err == want, f"{src}: stderr {err!r}")
+        else:
+            c.expect(re.fullmatch(re.escape(src) + r":\d+:\d+: error: [^\n]*\n", err),
+                     f"{src}: stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == [], f"wrote {os.listdir(c.tmp)}")
+
+
+def case_input_sparse_gib(c):
+    """A 1 GiB file of NUL bytes (sparse: no disk) fails at 1:1 at once;
+    a 2 GiB texture is refused at its texmap without being read."""
+    big = c.out("big.txt")
+    with open(big, "wb") as f:
+        f.truncate(1 << 30)
+    status, err = run_bounded(c, [big, c.out()])
+    c.expect(status == 1 and err == f"{big}:1:1: error: unexpected character '\\x00'\n",
+             f"exit {status}, stderr {err!r}")
+    # A texture file past 1 GiB is refused unread, at its texmap.
+    scene = c.out("scene.txt")
+    with open(scene, "w") as f:
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n"
+                "1\ntexmap big.txt 1 0 0 0 0 1 0 0\n1\n1 0 0 1 0 0 1\n0\n")
+    with open(big, "wb") as f:
+        f.truncate(2 << 30)
+    status, err = run_bounded(c, [scene, c.out()])
+    c.expect(status == 1 and err == f"{scene}:8:8: error: cannot read texture 'big.txt': "
+             f"{os.strerror(27)}\n", f"texture: exit {status}, stderr {err!r}")
+    c.expect(sorted(os.listdir(c.tmp)) == ["big.txt", "scene.txt"], f"left {os.listdir(c.tmp)}")
+
+
+def case_input_garbage_after_scene(c):
+    """A valid scene, 300 KB of comments (more than the lexer's window), then
+    garbage: the error names the garbage's own line and column."""
+    with open(SCENE) as f:
+        text = f.read()
+    pad = "# padding padding padding padding padding padding\n" * 6000
+    text += pad + "   \t garbage" + "x" * 1000
+    line = text.count("\n", 0, text.index("garbage")) + 1
+    scene = c.out("scene.txt")
+    with open(scene, "w") as f:
+        f.write(text)
+    status, err = run_bounded(c, [scene, c.out()])
+    want = (f"{scene}:{line}:6: error: expected 'samples', 'lens', 'fog', 'arealight' "
+            f"or end of file, found 'garbagexxxxxxxxxxxxxxxxxxxxxxxxx...'\n")
+    c.expect(status == 1 and err == want, f"exit {status}, stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == ["scene.txt"], f"left {os.listdir(c.tmp)}")
+
+
+def case_input_numbers_across_reads(c):
+    """Long numbers end to end, 600 KB of them, so that the lexer's reads
+    end inside numbers everywhere: each reads as a whole (as Python reads
+    it: both round correctly), seen through --dump-scene; a token of more
+    than 65536 bytes is an error at its start."""
+    import json
+    with open(SCENE) as f:
+        text = f.read().rsplit("1\n0 0 sphere", 1)[0]
+    faces = [[(-1) ** f * (1 + f * 1e-6 + k * 1e-9) for k in range(4)] for f in range(4000)]
+    text += "1\n0 0 polyhedron 4000\n" + "".join(
+        " ".join(f"{v:.30e}" for v in face) + "\n" for face in faces)
+    scene = c.out("scene.txt")
+    with open(scene, "w") as f:
+        f.write(text)
+    written = [float(w) for w in text.split("polyhedron 4000\n")[1].split()]
+    status, out, err = run(c.tp2, ["--dump-scene", scene])
+    c.require(status == 0 and err == "", f"--dump-scene: exit {status}, stderr {err!r}")
+    c.expect(json.loads(out)["objects"][0]["numbers"] == written, "numbers differ")
+    with open(scene, "w") as f:
+        f.write("0 0 " + "1" * 65537 + "\n")
+    status, err = run_bounded(c, [scene, c.out()])
+    c.expect(status == 1 and err == f"{scene}:1:5: error: token "
+             f"'{'1' * 32}...' is longer than 65536 bytes\n", f"exit {status}, stderr {err!r}")
+
+
+# Float's range (README.TXT, "Precision"; scene_length_limit in
+# host/scene.c): a sphere 1e20 away with radius 5e19, seen from the origin
+# at 90 degrees; it covers the middle of the image, the corners are the
+# gray background. In float |o - c|^2 = 1e40 is infinite and the sphere
+# vanished, exit 0.
+FAR_SCENE = """0 0 0
+0 0 -1
+0 1 0
+90
+2
+0 0 0   0.2 0.2 0.2   0 0 0
+0 0 0   1 1 1         1 0 0
+1
+solid 0 1 0
+1
+0.5 0.5 0 1  0 0 0
+1
+0 0 sphere 0 0 -1e20 %s
+"""
+
+
+def far_scene(c, radius="5e19"):
+    path = c.out("far.txt")
+    with open(path, "w") as f:
+        f.write(FAR_SCENE % radius)
+    return path
+
+
+def case_float_range_default_double(c):
+    """Lengths past float's range render in double when no --precision is
+    given, with a note naming the value and where it was written; the
+    sphere is there, green, the corners gray; --stats says double."""
+    scene = far_scene(c)
+    out = c.out("far.ppm")
+    status, _, err = run(c.tp2, [scene, out, "9", "9"])
+    want = (f"{scene}:13:5: note: a coordinate or size of 1e+20 (sphere) is beyond float "
+            f"precision's range (lengths up to 1.15e+18): rendering in double precision\n")
+    c.require(status == 0, f"exit {status}, stderr {err!r}")
+    c.expect(err == want, f"stderr {err!r}")
+    w, h, rgb = tp2test.read_ppm(out)
+    middle = tuple(rgb[3 * (4 * w + 4):3 * (4 * w + 4) + 3])
+    corner = tuple(rgb[0:3])
+    c.expect(middle[0] == 0 and middle[2] == 0 and middle[1] > 100, f"middle pixel {middle}")
+    c.expect(corner == (128, 128, 128), f"corner pixel {corner}")
+    # The same image as --precision double asked for, which says nothing.
+    status, _, err = run(c.tp2, ["--precision", "double", scene, c.out("d.ppm"), "9", "9"])
+    c.expect(status == 0 and err == "", f"--precision double: exit {status}, stderr {err!r}")
+    with open(out, "rb") as a, open(c.out("d.ppm"), "rb") as b:
+        c.expect(a.read() == b.read(), "differs from --precision double")
+    status, _, err = run(c.tp2, ["--quiet", "--stats", scene, out, "9", "9"])
+    c.expect(status == 0 and "tp2: precision  double\n" in err and "note:" not in err,
+             f"--quiet --stats: exit {status}, stderr {err!r}")
+
+
+def case_float_range_refused(c):
+    """Under --precision float such a scene is refused, naming the value
+    and its place; past double's bound (2^120) it is refused in any
+    precision. Exit 1, nothing written."""
+    scene = far_scene(c)
+    status, _, err = run(c.tp2, ["--precision", "float", scene, c.out()])
+    want = (f"{scene}:13:5: error: a coordinate or size of 1e+20 (sphere) is beyond float "
+            f"precision's range (lengths up to 1.15e+18); leave out --precision float to "
+            f"render it in double\n")
+    c.expect(status == 1 and err == want, f"--precision float: exit {status}, stderr {err!r}")
+    scene = far_scene(c, "1e37")
+    for options in ([], ["--precision", "double"]):
+        status, _, err = run(c.tp2, options + [scene, c.out()])
+        want = (f"{scene}:13:5: error: a coordinate or size of 1e+37 (sphere) is beyond what "
+                f"tp2 can render (lengths up to 1.33e+36, in double precision)\n")
+        c.expect(status == 1 and err == want, f"{options}: exit {status}, stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == ["far.txt"], f"left {os.listdir(c.tmp)}")
+
+
 def case_obj_name_escaped(c):
     """An OBJ file's name in its own FILE:LINE:COL errors is escaped too."""
     name = "me\x1bsh\x7f.obj"

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "lexer.h"
 #include "pigments.h"
 #include "scene_parse.h"
 #include "shapes.h"
@@ -383,6 +384,98 @@ static void test_unterminated_buffer(void)
     free(text);
 }
 
+/* A text far larger than the lexer's window (lexer.c), made of long
+ * numbers, so that reads end inside numbers everywhere: each face number
+ * must still read as strtod reads its whole text, and an error at the end
+ * has its exact line and column. */
+static void test_streamed_window(void)
+{
+    enum { FACES = 4000 }; /* 16000 numbers of 38 bytes: 600 KB */
+    size_t cap = 64 + sizeof BASE + FACES * 4 * 40;
+    char *text = malloc(cap);
+    int used = snprintf(text, cap, "%s", CAM LIGHTS PIGS FINS "1\n0 0 polyhedron 4000\n");
+    for (int f = 0; f < FACES; f++)
+        for (int k = 0; k < 4; k++)
+            used += snprintf(text + used, cap - (size_t)used, "%s%.30e%c",
+                             f % 7 == 0 && k == 0 ? "-" : "", 1.0 + f * 1e-6 + k * 1e-9,
+                             k == 3 ? '\n' : ' ');
+    struct scene s = parse_ok(text, __LINE__);
+    CHECK(s.nobjects == 1 && s.nreals == 4 * FACES);
+    int same = s.nreals == 4 * FACES;
+    const char *at = strstr(text, "polyhedron 4000\n") + 16;
+    for (size_t i = 0; same && i < s.nreals; i++) {
+        char *end;
+        same = strtod(at, &end) == s.reals[i];
+        at = end;
+    }
+    CHECK(same);
+    scene_free(&s);
+    /* Something wrong at the very end: line 14 + FACES, column 1. */
+    used += snprintf(text + used, cap - (size_t)used, "bogus");
+    char err[256], want[256];
+    snprintf(want, sizeof want, "t.txt:%d:1: error: expected 'samples', 'lens', 'fog', "
+             "'arealight' or end of file, found 'bogus'", 14 + FACES);
+    CHECK(scene_parse_text("t.txt", text, (size_t)used, &s, err, sizeof err) == -1);
+    CHECK(strcmp(err, want) == 0);
+    free(text);
+}
+
+/* Tokens up to LEXER_TOKEN_MAX bytes read; a longer one is an error at its
+ * start. Comments and blanks of any length cost nothing. */
+static void test_token_limit(void)
+{
+    size_t cap = 3 * LEXER_TOKEN_MAX + sizeof BASE + 64;
+    char *text = malloc(cap);
+    /* An eye x of exactly LEXER_TOKEN_MAX bytes: 0.5000...0. */
+    memset(text, '0', LEXER_TOKEN_MAX);
+    text[1] = '.';
+    text[2] = '5';
+    snprintf(text + LEXER_TOKEN_MAX, cap - LEXER_TOKEN_MAX, " %s", BASE + 2);
+    struct scene s = parse_ok(text, __LINE__);
+    CHECK(s.eye[0] == 0.5);
+    scene_free(&s);
+    /* One byte more. */
+    memset(text, '0', LEXER_TOKEN_MAX + 1);
+    text[1] = '.';
+    text[2] = '5';
+    snprintf(text + LEXER_TOKEN_MAX + 1, cap - LEXER_TOKEN_MAX - 1, " %s", BASE + 2);
+    EXPECT_ERROR(text, "t.txt:1:1: error: token '0.500000000000000000000000000000...' "
+                       "is longer than 65536 bytes");
+    /* A word too: the header's name, after a comment of 3 windows' size. */
+    memset(text, ' ', 2 * LEXER_TOKEN_MAX);
+    text[0] = '#';
+    text[2 * LEXER_TOKEN_MAX] = '\n';
+    memset(text + 2 * LEXER_TOKEN_MAX + 1, 'a', LEXER_TOKEN_MAX + 1);
+    text[3 * LEXER_TOKEN_MAX + 2] = '\0';
+    EXPECT_ERROR(text, "t.txt:2:1: error: token 'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa...' "
+                       "is longer than 65536 bytes");
+    /* A NUL byte far in is reported where it is. */
+    memset(text, '\n', 2 * LEXER_TOKEN_MAX);
+    memcpy(text + 2 * LEXER_TOKEN_MAX, " \0", 2);
+    expect_error_n(text, 2 * LEXER_TOKEN_MAX + 2,
+                   "t.txt:131073:2: error: unexpected character '\\x00'", __LINE__);
+    free(text);
+}
+
+/* The largest length the shaders get, and where (scene_length_limit):
+ * object numbers as packed (a plane's normal is scaled to 1), not the
+ * ambient light's unused position. */
+static void test_max_length(void)
+{
+    struct scene s = parse_ok(CAM "2\n5e30 0 0 1 1 1 0 0 0\n3 -40 0 1 1 1 1 0 0\n" PIGS FINS
+                              "2\n0 0 plane 0 0 1e30 2e30\n0 0 sphere 0 0 -5 1\n",
+                              __LINE__);
+    CHECK(s.max_length == 40 && s.max_length_line == 7 && s.max_length_col == 1);
+    CHECK(s.max_length_what && strcmp(s.max_length_what, "light position") == 0);
+    scene_free(&s);
+    s = parse_ok(CAM LIGHTS PIGS FINS "2\n0 0 plane 0 0 1e-30 2e30\n"
+                 "0 0 sphere 0 0 -5 1e20\nlens 0 1e21\n", __LINE__);
+    CHECK(s.max_length == 2e60 && s.max_length_line == 13 && s.max_length_col == 5);
+    CHECK(s.max_length_what && strcmp(s.max_length_what, "plane") == 0);
+    scene_free(&s);
+    CHECK(scene_length_limit(false) == 0x1p60 && scene_length_limit(true) == 0x1p120);
+}
+
 static void test_api_edges(void)
 {
     struct scene s;
@@ -715,6 +808,9 @@ int main(void)
     test_files_beside_scene();
     test_many_objects();
     test_unterminated_buffer();
+    test_streamed_window();
+    test_token_limit();
+    test_max_length();
     test_api_edges();
     test_lexical_errors();
     test_byte_errors();
