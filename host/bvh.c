@@ -1,5 +1,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bvh.h"
+#include "big_alloc.h"
 #include "tp2_shared.h"
 
 #include <float.h>
@@ -474,7 +475,7 @@ static size_t build_halves(struct prim *prims, struct task kids[2],
     for (int k = 0; k < 2; k++) {
         kids[k].depth = 1;
         h[k] = (struct half){prims, kids[k], NULL, 0};
-        h[k].nodes = malloc((2 * (size_t)(kids[k].end - kids[k].begin) - 1) *
+        h[k].nodes = big_alloc((2 * (size_t)(kids[k].end - kids[k].begin) - 1) *
                             sizeof *h[k].nodes);
     }
     size_t total = 0;
@@ -514,9 +515,9 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
         return -1;
 
     size_t max_nodes = 2 * n - 1;
-    struct prim *prims = malloc(n * sizeof *prims);
-    b->nodes = malloc(max_nodes * sizeof *b->nodes);
-    b->order = malloc(n * sizeof *b->order);
+    struct prim *prims = big_alloc(n * sizeof *prims);
+    b->nodes = big_alloc(max_nodes * sizeof *b->nodes);
+    b->order = big_alloc(n * sizeof *b->order);
     if (!prims || !b->nodes || !b->order) {
         free(prims);
         bvh_free(b);
@@ -589,7 +590,7 @@ int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out)
         return 0;
     }
     /* Inner nodes keep their order (the root first); leaves drop out. */
-    int32_t *gpu_index = malloc(b->node_count * sizeof *gpu_index);
+    int32_t *gpu_index = big_alloc(b->node_count * sizeof *gpu_index);
     if (!gpu_index)
         return -1;
     int32_t next = 0;

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "bvh.h"
 #include "clock.h"
 #include "gpu_layout.h"
@@ -104,7 +105,7 @@ static void *alloc_buffer(struct packed_scene *out, int binding, size_t count,
     if (count > SIZE_MAX / elem)
         return NULL;
     out->size[binding] = count * elem;
-    out->data[binding] = calloc(count, elem);
+    out->data[binding] = big_calloc(count, elem);
     return out->data[binding];
 }
 
@@ -224,9 +225,9 @@ static int layout_objects(const struct scene *s, struct layout *lay,
         lay->nextra += kind->extra_rows(p, o->count);
     }
     size_t n = lay->nprims ? lay->nprims : 1;
-    double (*boxes)[6] = malloc(n * sizeof *boxes);
-    struct prim_ref *bounded = malloc(n * sizeof *bounded);
-    lay->slots = malloc(n * sizeof *lay->slots);
+    double (*boxes)[6] = big_alloc(n * sizeof *boxes);
+    struct prim_ref *bounded = big_alloc(n * sizeof *bounded);
+    lay->slots = big_alloc(n * sizeof *lay->slots);
     int rc = -1;
     if (boxes && bounded && lay->slots) {
         size_t nb = 0, nu = lay->nprims;
