@@ -15,6 +15,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tp2_shared.h"
+
 /* The shader's traversal stack holds this many node indices. */
 #define TP2_BVH_MAX_DEPTH 32
 
@@ -46,7 +48,7 @@ struct bvh {
  * links (tp2_shared.h: an inner node, or a leaf's objects). A visit loads
  * 14 words and enters a leaf without loading anything more; the tree as
  * built needed 8 words per node and 12 more for its children's boxes.
- * (std430: vec4 x, y, z; ivec2 link; 64 bytes.) */
+ * (Four 16-byte texels: x, y, z, then link and padding.) */
 struct bvh_gpu_node {
     float x[4], y[4], z[4];
     int32_t link[2];
@@ -57,6 +59,9 @@ _Static_assert(sizeof(struct bvh_gpu_node) == 64, "bvh_gpu_node is 64 bytes");
 _Static_assert(offsetof(struct bvh_gpu_node, y) == 16, "bvh_gpu_node.y at 16");
 _Static_assert(offsetof(struct bvh_gpu_node, z) == 32, "bvh_gpu_node.z at 32");
 _Static_assert(offsetof(struct bvh_gpu_node, link) == 48, "bvh_gpu_node.link at 48");
+_Static_assert(sizeof(struct bvh_gpu_node) == TP2_NODE_TEXELS * TP2_TEXEL_BYTES &&
+                   offsetof(struct bvh_gpu_node, link) == 3 * TP2_TEXEL_BYTES,
+               "bvh_gpu_node as the shader's texels: x, y, z, then the links");
 
 /* The shader's nodes of b, written to out (room for bvh_gpu_count(b)):
  * one per inner node, the root first, in the tree's order. A tree that is

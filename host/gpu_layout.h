@@ -105,6 +105,17 @@ TP2_LAYOUT(gpu_object_d, c, 64);
 TP2_LAYOUT(gpu_object_d, ids, 96);
 TP2_SIZE(gpu_object_d, 128);
 
+/* Objects are read as texels (tp2_shared.h): rows of TP2_ROW_TEXELS_*
+ * texels each, ids after the three rows, TP2_OBJECT_TEXELS_* in all. */
+#define TP2_TEXEL_LAYOUT(T, rows, texels)                                         \
+    _Static_assert(offsetof(struct T, b) == TP2_TEXEL_BYTES * (rows) &&           \
+                       offsetof(struct T, c) == TP2_TEXEL_BYTES * 2 * (rows) &&   \
+                       offsetof(struct T, ids) == TP2_TEXEL_BYTES * 3 * (rows) && \
+                       sizeof(struct T) == TP2_TEXEL_BYTES * (texels),            \
+                   #T " as the shader's texels")
+TP2_TEXEL_LAYOUT(gpu_object_f, TP2_ROW_TEXELS_F, TP2_OBJECT_TEXELS_F);
+TP2_TEXEL_LAYOUT(gpu_object_d, TP2_ROW_TEXELS_D, TP2_OBJECT_TEXELS_D);
+
 TP2_LAYOUT(gpu_walk_ray_f, origin, 0);
 TP2_LAYOUT(gpu_walk_ray_f, dir, 16);
 TP2_LAYOUT(gpu_walk_ray_f, info, 32);

@@ -64,6 +64,7 @@ struct renderer {
     bool walking;         /* a whole-tree pass was cut: walks go in passes */
     double pipeline_time; /* seconds spent making pipelines */
     VkDescriptorPool pool;
+    VkBufferView views[TP2_BINDING_COUNT]; /* the texel buffers' */
     VkDescriptorSet set;
     VkCommandPool command_pool;
     VkCommandBuffer cmd;
@@ -208,6 +209,15 @@ static size_t spirv_size(bool use_double, bool curved)
                       : (curved ? sizeof tp2_trace_float_curved : sizeof tp2_trace_float);
 }
 
+/* How the shader reads binding i (tp2_shared.h): objects and BVH nodes
+ * as texels, the rest as storage buffers. */
+static VkDescriptorType binding_type(uint32_t i)
+{
+    return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH
+               ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
 /* The descriptor set layout, the pipeline layout and the shader module of
  * the precision and kinds the scene needs. */
 static int create_layouts(struct renderer *r, bool use_double)
@@ -216,7 +226,7 @@ static int create_layouts(struct renderer *r, bool use_double)
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
         bindings[i] = (VkDescriptorSetLayoutBinding){
             .binding = i,
-            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+            .descriptorType = binding_type(i),
             .descriptorCount = 1,
             .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
         };
@@ -289,15 +299,17 @@ static int need_pipeline(struct renderer *r, int walk)
 
 static int create_descriptors(struct renderer *r)
 {
-    VkDescriptorPoolSize size = {
-        .type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        .descriptorCount = TP2_BINDING_COUNT,
+    VkDescriptorPoolSize sizes[2] = {
+        {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
     };
+    for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
+        sizes[binding_type(i) == sizes[1].type].descriptorCount++;
     VkDescriptorPoolCreateInfo pool_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .maxSets = 1,
-        .poolSizeCount = 1,
-        .pPoolSizes = &size,
+        .poolSizeCount = 2,
+        .pPoolSizes = sizes,
     };
     TP2_VK_TRY(vkCreateDescriptorPool(r->vk.device, &pool_info, NULL, &r->pool));
     VkDescriptorSetAllocateInfo alloc = {
@@ -319,9 +331,20 @@ static int create_descriptors(struct renderer *r)
             .dstSet = r->set,
             .dstBinding = i,
             .descriptorCount = 1,
-            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-            .pBufferInfo = &infos[i],
+            .descriptorType = binding_type(i),
         };
+        if (binding_type(i) == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
+            writes[i].pBufferInfo = &infos[i];
+            continue;
+        }
+        VkBufferViewCreateInfo view_info = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+            .buffer = r->buffers[i].buffer,
+            .format = VK_FORMAT_R32G32B32A32_UINT, /* bits, reinterpreted in GLSL */
+            .range = VK_WHOLE_SIZE,
+        };
+        TP2_VK_TRY(vkCreateBufferView(r->vk.device, &view_info, NULL, &r->views[i]));
+        writes[i].pTexelBufferView = &r->views[i];
     }
     vkUpdateDescriptorSets(r->vk.device, TP2_BINDING_COUNT, writes, 0, NULL);
     return 0;
@@ -568,6 +591,8 @@ static void renderer_destroy(struct renderer *r)
         vkDestroyFence(d, r->fence, NULL);
         vkDestroyCommandPool(d, r->command_pool, NULL);
         vkDestroyDescriptorPool(d, r->pool, NULL);
+        for (int i = 0; i < TP2_BINDING_COUNT; i++)
+            vkDestroyBufferView(d, r->views[i], NULL);
         for (int k = 0; k < TP2_WALK_KINDS; k++)
             vkDestroyPipeline(d, r->pipelines[k], NULL);
         vkDestroyPipelineCache(d, r->cache, NULL);
@@ -631,8 +656,22 @@ static VkDeviceSize storage_range(const struct vkc *vk)
     return range;
 }
 
-/* Every scene buffer must fit one storage-buffer binding, or the shader
- * would read past what it is given. */
+/* The device's texel-buffer limit, in texels; TP2_TEXEL_ELEMENTS may lower
+ * it, as TP2_STORAGE_RANGE the storage range. */
+static VkDeviceSize texel_elements(const struct vkc *vk)
+{
+    VkDeviceSize max = vk->props.limits.maxTexelBufferElements;
+    const char *env = getenv("TP2_TEXEL_ELEMENTS");
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < max)
+        max = v;
+    return max;
+}
+
+/* Every scene buffer must fit its binding (a storage buffer's range, a
+ * texel buffer's element count), or the shader would read past what it
+ * is given. */
 static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
                             bool use_double)
 {
@@ -643,8 +682,19 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
         [TP2_BINDING_EXTRA] = "polyhedron faces and quadrics",
         [TP2_BINDING_TEXELS] = "texture texels",
     };
-    VkDeviceSize range = storage_range(vk);
-    for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
+    VkDeviceSize range = storage_range(vk), texels = texel_elements(vk);
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
+        if (binding_type((uint32_t)i) == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+            if (p->size[i] / TP2_TEXEL_BYTES <= texels)
+                continue;
+            fprintf(stderr, "tp2: scene too large for device '%s': its %s need %llu "
+                            "texels of %d bytes, and one texel buffer holds at most %llu%s\n",
+                    vk->props.deviceName, what[i],
+                    (unsigned long long)(p->size[i] / TP2_TEXEL_BYTES), TP2_TEXEL_BYTES,
+                    (unsigned long long)texels,
+                    use_double ? " (--precision float makes them smaller)" : "");
+            return -1;
+        }
         if (p->size[i] > range) {
             fprintf(stderr, "tp2: scene too large for device '%s': its %s need %llu "
                             "bytes, and one storage buffer holds at most %llu%s\n",
@@ -653,6 +703,7 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
                     use_double ? " (--precision float makes most of them smaller)" : "");
             return -1;
         }
+    }
     return 0;
 }
 

@@ -95,7 +95,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
             }
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out
-            BvhNode n = nodes[node];
+            BvhNode n = load_node(node);
             node = -1;
             rvec2 t = children_entry(n, o, inv_d, h.t);
             bool left_first = t.x <= t.y;

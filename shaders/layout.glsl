@@ -39,14 +39,6 @@ struct Finish {
     vec4 optics; // kr kt ior
 };
 
-// One primitive; what each kind keeps in a, b, c: host/shapes.c.
-struct Object {
-    rvec4 a;
-    rvec4 b;
-    rvec4 c;
-    ivec4 ids; // TP2_SHAPE_*, pigment, finish, first row in extra[]
-};
-
 // An inner node: its two children's boxes by axis (left lo, left hi,
 // right lo, right hi) and their links (tp2_shared.h: -link an inner node,
 // else a leaf's objects).
@@ -55,15 +47,15 @@ struct BvhNode {
     vec4 y;
     vec4 z;
     ivec2 link;
-    ivec2 pad; // never read: the struct is 64 bytes either way (std430)
 };
 
 layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };
 layout(std430, set = 0, binding = TP2_BINDING_LIGHTS) readonly buffer LightBuf { Light lights[]; };
 layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentBuf { Pigment pigments[]; };
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };
-layout(std430, set = 0, binding = TP2_BINDING_OBJECTS) readonly buffer ObjectBuf { Object objects[]; };
-layout(std430, set = 0, binding = TP2_BINDING_BVH) readonly buffer BvhBuf { BvhNode nodes[]; };
+// Objects and BVH nodes, as texels (tp2_shared.h; read below).
+layout(set = 0, binding = TP2_BINDING_OBJECTS) uniform usamplerBuffer object_texels;
+layout(set = 0, binding = TP2_BINDING_BVH) uniform usamplerBuffer node_texels;
 layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { rvec4 extra[]; };
 // Texmap images: one word per texel, r | g << 8 | b << 16, rows top to bottom.
 layout(std430, set = 0, binding = TP2_BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
@@ -120,3 +112,43 @@ layout(constant_id = TP2_SPEC_WALK) const int WALK = TP2_WALK_WHOLE;
 // TP2_SHAPE_*): code for kinds it does not use is compiled out.
 #define USES_PIGMENT(k) ((PIGMENT_KINDS & (1 << (k))) != 0)
 #define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
+
+// Object i, one primitive: rows a, b, c (what each kind keeps in them:
+// host/shapes.c) and ids (TP2_SHAPE_*, pigment, finish, first row in
+// extra[]).
+#ifdef TP2_DOUBLE
+#define OBJECT_TEXELS TP2_OBJECT_TEXELS_D
+#define ROW_TEXELS TP2_ROW_TEXELS_D
+#else
+#define OBJECT_TEXELS TP2_OBJECT_TEXELS_F
+#define ROW_TEXELS TP2_ROW_TEXELS_F
+#endif
+
+// Row k (0: a, 1: b, 2: c) of object i.
+rvec4 object_row(int i, int k)
+{
+    int at = OBJECT_TEXELS * i + ROW_TEXELS * k;
+#ifdef TP2_DOUBLE
+    uvec4 lo = texelFetch(object_texels, at);
+    uvec4 hi = texelFetch(object_texels, at + 1);
+    return dvec4(packDouble2x32(lo.xy), packDouble2x32(lo.zw), packDouble2x32(hi.xy),
+                 packDouble2x32(hi.zw));
+#else
+    return uintBitsToFloat(texelFetch(object_texels, at));
+#endif
+}
+
+ivec4 object_ids(int i)
+{
+    return ivec4(texelFetch(object_texels, OBJECT_TEXELS * i + 3 * ROW_TEXELS));
+}
+
+// Inner node i of the BVH.
+BvhNode load_node(int i)
+{
+    int at = TP2_NODE_TEXELS * i;
+    return BvhNode(uintBitsToFloat(texelFetch(node_texels, at)),
+                   uintBitsToFloat(texelFetch(node_texels, at + 1)),
+                   uintBitsToFloat(texelFetch(node_texels, at + 2)),
+                   ivec2(texelFetch(node_texels, at + 3).xy));
+}

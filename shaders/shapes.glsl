@@ -93,7 +93,7 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
 {
     if (on && !inward)
         return NO_HIT;
-    rvec4 sphere = objects[i].a;
+    rvec4 sphere = object_row(i, 0);
     rvec3 oc = o - sphere.xyz;
     real r = sphere.w;
     real b = dot(oc, d);
@@ -113,7 +113,7 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
 
 void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale)
 {
-    rvec4 sphere = objects[i].a;
+    rvec4 sphere = object_row(i, 0);
     n = normalize(p - sphere.xyz);
     p = sphere.xyz + sphere.w * n;
     scale = max_abs(sphere.xyz) + sphere.w;
@@ -133,7 +133,7 @@ real plane_t(rvec4 plane, rvec3 o, rvec3 d)
 
 real hit_plane(int i, rvec3 o, rvec3 d, bool on)
 {
-    return on ? NO_HIT : plane_t(objects[i].a, o, d);
+    return on ? NO_HIT : plane_t(object_row(i, 0), o, d);
 }
 
 // p moved onto plane (unit normal, distance), and its normal.
@@ -150,8 +150,8 @@ void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
 // enters; the latest such entry and the earliest exit bound the span.
 real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
-    int first = objects[i].ids.w;
-    int faces = int(objects[i].a.x);
+    int first = object_ids(i).w;
+    int faces = int(object_row(i, 0).x);
     Span s = WHOLE_LINE;
     for (int k = 0; k < faces; ++k) {
         rvec4 f = extra[first + k];
@@ -173,7 +173,7 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 
 void surface_polyhedron(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 {
-    onto_plane(extra[objects[i].ids.w + part], p, n, scale);
+    onto_plane(extra[object_ids(i).w + part], p, n, scale);
 }
 
 // ---- box: a = min corner, b = max corner --------------------------------
@@ -181,8 +181,8 @@ void surface_polyhedron(int i, int part, inout rvec3 p, out rvec3 n, out real sc
 // Parts: axis + 3 for the face at the max corner.
 real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
-    rvec3 lo = objects[i].a.xyz;
-    rvec3 hi = objects[i].b.xyz;
+    rvec3 lo = object_row(i, 0).xyz;
+    rvec3 hi = object_row(i, 1).xyz;
     Span s = WHOLE_LINE;
     clip_slab(s, o.x, d.x, lo.x, hi.x, 0, 3);
     clip_slab(s, o.y, d.y, lo.y, hi.y, 1, 4);
@@ -195,11 +195,11 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 {
     int axis = part % 3;
     bool high = part >= 3;
-    rvec3 corner = high ? objects[i].b.xyz : objects[i].a.xyz;
+    rvec3 corner = high ? object_row(i, 1).xyz : object_row(i, 0).xyz;
     n = rvec3(0.0);
     n[axis] = high ? 1.0 : -1.0;
     p[axis] = corner[axis];
-    scale = max(max_abs(p), max(max_abs(objects[i].a.xyz), max_abs(objects[i].b.xyz)));
+    scale = max(max_abs(p), max(max_abs(object_row(i, 0).xyz), max_abs(object_row(i, 1).xyz)));
 }
 
 #ifdef TP2_CURVED // the build with the curved kinds (see CMakeLists.txt)
@@ -215,8 +215,8 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
-    rvec4 base = objects[i].a;
-    rvec4 axis = objects[i].b;
+    rvec4 base = object_row(i, 0);
+    rvec4 axis = object_row(i, 1);
     real h = axis.w;
     real k = (r1 - base.w) / h;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
@@ -256,13 +256,13 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
 // The radius at the top: a cylinder's is its radius.
 real top_radius(int i, int kind)
 {
-    return kind == TP2_SHAPE_CYLINDER ? objects[i].a.w : objects[i].c.x;
+    return kind == TP2_SHAPE_CYLINDER ? object_row(i, 0).w : object_row(i, 2).x;
 }
 
 void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out real scale)
 {
-    rvec4 base = objects[i].a;
-    rvec4 axis = objects[i].b;
+    rvec4 base = object_row(i, 0);
+    rvec4 axis = object_row(i, 1);
     rvec3 y = p - base.xyz;
     real z = dot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);
@@ -289,8 +289,8 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
 // ((rho + R)^2 + z^2 = r^2) as roots; they are skipped.
 real hit_torus(int i, rvec3 o, rvec3 d, bool on)
 {
-    rvec4 ca = objects[i].a;
-    rvec4 ab = objects[i].b;
+    rvec4 ca = object_row(i, 0);
+    rvec4 ab = object_row(i, 1);
     real size = ca.w + ab.w;
     real t0 = on ? real(0.0) : recenter(ca.xyz, o, d);
     rvec3 x = (o - ca.xyz) / size;
@@ -337,8 +337,8 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
 // p moved onto the tube: r from the nearest point of the core circle.
 void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale)
 {
-    rvec4 ca = objects[i].a;
-    rvec4 ab = objects[i].b;
+    rvec4 ca = object_row(i, 0);
+    rvec4 ab = object_row(i, 1);
     rvec3 y = p - ca.xyz;
     real z = dot(y, ab.xyz);
     rvec3 radial = y - z * ab.xyz;
@@ -355,8 +355,8 @@ void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale)
 // M y for the symmetric matrix of the quadratic part.
 rvec3 quadric_m(int i, rvec3 y)
 {
-    rvec4 a = objects[i].a;
-    rvec4 b = objects[i].b;
+    rvec4 a = object_row(i, 0);
+    rvec4 b = object_row(i, 1);
     return rvec3(a.x * y.x + 0.5 * (a.w * y.y + b.x * y.z),
                  a.y * y.y + 0.5 * (a.w * y.x + b.y * y.z),
                  a.z * y.z + 0.5 * (b.x * y.x + b.y * y.y));
@@ -364,12 +364,12 @@ rvec3 quadric_m(int i, rvec3 y)
 
 rvec3 quadric_g(int i)
 {
-    return rvec3(objects[i].b.zw, objects[i].c.x);
+    return rvec3(object_row(i, 1).zw, object_row(i, 2).x);
 }
 
 real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
 {
-    rvec3 ref = extra[objects[i].ids.w].xyz;
+    rvec3 ref = extra[object_ids(i).w].xyz;
     real t0 = on ? real(0.0) : recenter(ref, o, d);
     rvec3 y = o - ref;
     rvec3 g = quadric_g(i);
@@ -378,7 +378,7 @@ real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
     real qb = 2.0 * dot(y, md) + dot(g, d);
     if (on) // the root at 0 divided out: qa s + qb = 0
         return qa != 0.0 && -qb / qa > 0.0 ? -qb / qa : NO_HIT;
-    real qc = dot(y, quadric_m(i, y)) + dot(g, y) + objects[i].c.y;
+    real qc = dot(y, quadric_m(i, y)) + dot(g, y) + object_row(i, 2).y;
     rvec2 r;
     int n = quadratic_roots(qa, qb, qc, r);
     if (n >= 1 && t0 + r.x > 0.0)
@@ -390,12 +390,12 @@ real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
 // (toward Q > 0).
 void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
 {
-    rvec3 ref = extra[objects[i].ids.w].xyz;
+    rvec3 ref = extra[object_ids(i).w].xyz;
     rvec3 y = p - ref;
     rvec3 my = quadric_m(i, y);
     rvec3 g = quadric_g(i);
     rvec3 grad = 2.0 * my + g;
-    real q = dot(y, my) + dot(g, y) + objects[i].c.y;
+    real q = dot(y, my) + dot(g, y) + object_row(i, 2).y;
     real gg = dot(grad, grad);
     if (gg > 0.0) {
         p -= (q / gg) * grad;
@@ -425,9 +425,9 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, out real tw)
     if (d[k.z] < 0.0)
         k.xy = k.yx;
     rvec3 shear = rvec3(d[k.x], d[k.y], 1.0) / d[k.z];
-    rvec3 a = objects[i].a.xyz - o;
-    rvec3 b = objects[i].b.xyz - o;
-    rvec3 c = objects[i].c.xyz - o;
+    rvec3 a = object_row(i, 0).xyz - o;
+    rvec3 b = object_row(i, 1).xyz - o;
+    rvec3 c = object_row(i, 2).xyz - o;
     rvec3 pa = rvec3(a[k.x], a[k.y], a[k.z]);
     rvec3 pb = rvec3(b[k.x], b[k.y], b[k.z]);
     rvec3 pc = rvec3(c[k.x], c[k.y], c[k.z]);
@@ -461,9 +461,9 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
 // rays would hit the neighbor: acne on meshes seen from afar).
 void surface_triangle(int i, rvec3 o, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
 {
-    rvec4 a = objects[i].a;
-    rvec4 b = objects[i].b;
-    rvec4 c = objects[i].c;
+    rvec4 a = object_row(i, 0);
+    rvec4 b = object_row(i, 1);
+    rvec4 c = object_row(i, 2);
     n = rvec3(a.w, b.w, c.w);
     real tw;
     rvec3 uvw = triangle_weights(i, o, d, tw);
@@ -483,7 +483,7 @@ int shape_of(int i)
         return i < frame.geometry.x ? BOUNDED_SHAPE : UNBOUNDED_SHAPE;
     if (UNBOUNDED_SHAPE >= 0 && i >= frame.geometry.x)
         return UNBOUNDED_SHAPE;
-    return objects[i].ids.x;
+    return object_ids(i).x;
 }
 
 // Object i's nearest t > 0 and part (see the top of this file).
@@ -523,7 +523,7 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
     if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
         surface_sphere(i, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
-        onto_plane(objects[i].a, p, n, scale);
+        onto_plane(object_row(i, 0), p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
         surface_triangle(i, o, d, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)

@@ -5,8 +5,9 @@
 #ifndef TP2_SHARED_H
 #define TP2_SHARED_H
 
-/* Descriptor bindings, all storage buffers in set 0. The scene's inputs
- * come first, the image and the stats after them. */
+/* Descriptor bindings, all in set 0, all storage buffers but the objects
+ * and the BVH, which are texel buffers (below). The scene's inputs come
+ * first, the image and the stats after them. */
 #define TP2_BINDING_FRAME 0
 #define TP2_BINDING_LIGHTS 1
 #define TP2_BINDING_PIGMENTS 2
@@ -21,6 +22,20 @@
 #define TP2_BINDING_WALKS 11     /* walks that go on in the next pass */
 #define TP2_BINDING_WALK_RAYS 12 /* their rays: TP2_WALK_RAYS per walk */
 #define TP2_BINDING_COUNT 13
+
+/* Objects and BVH nodes, the loads of every ray's inner loop, are read as
+ * texel buffers of 16-byte texels (usamplerBuffer over R32G32B32A32_UINT,
+ * bits reinterpreted): on lavapipe a texel fetch loads a whole texel,
+ * where a storage-buffer load loops over the SIMD lanes for each word
+ * (renders 4-19% faster, README "Performance"). An object is
+ * TP2_OBJECT_TEXELS_* texels: rows a, b, c of TP2_ROW_TEXELS_* each, then
+ * its ids; a node is TP2_NODE_TEXELS: x, y, z, then its links. */
+#define TP2_TEXEL_BYTES 16
+#define TP2_ROW_TEXELS_F 1
+#define TP2_ROW_TEXELS_D 2
+#define TP2_OBJECT_TEXELS_F 4
+#define TP2_OBJECT_TEXELS_D 8
+#define TP2_NODE_TEXELS 4
 
 /* Specialization constants: the pipeline is compiled for the features the
  * scene uses, so a scene without them pays nothing for them. */

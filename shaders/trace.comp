@@ -107,7 +107,7 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
     sh.view = -ray.dir;
     sh.origin = outside;
     sh.start = back;
-    ivec4 ids = objects[h.object].ids;
+    ivec4 ids = object_ids(h.object);
     Finish fin = finishes[ids.z];
     sh.fin = fin;
     sh.pig = pigment_color(ids.y, sh.p);

@@ -320,24 +320,30 @@ def case_obj_name_escaped(c):
 
 
 def case_scene_too_large(c):
-    """A scene buffer larger than the device's storage-buffer range is
-    refused before rendering, naming which (TP2_STORAGE_RANGE lowers the
-    range so that a small scene reaches it), and nothing is written."""
+    """A scene buffer larger than what its binding holds (a storage
+    buffer's range, a texel buffer's elements) is refused before rendering,
+    naming which (TP2_STORAGE_RANGE and TP2_TEXEL_ELEMENTS lower the limits
+    so that a small scene reaches them), and nothing is written."""
     spheres = "".join(f"0 0 sphere {i} 0 -20 0.5\n" for i in range(100))
+    lights = "".join(f"{i} 5 5 0.01 0.01 0.01 1 0 0\n" for i in range(100))
     scene = os.path.join(c.tmp, "scene.txt")
     with open(scene, "w") as f:
-        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n1\nsolid 1 1 1\n"
-                "1\n1 0 0 1 0 0 1\n100\n" + spheres)
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n101\n0 0 0 1 1 1 0 0 0\n" + lights +
+                "1\nsolid 1 1 1\n1\n1 0 0 1 0 0 1\n100\n" + spheres)
     out = c.out()
-    for env, ok in ((None, True), ({"TP2_STORAGE_RANGE": "4096"}, False)):
+    for env, want in ((None, None),
+                      ({"TP2_STORAGE_RANGE": "4096"},
+                       "its lights need 4800 bytes, and one storage buffer holds at most 4096"),
+                      ({"TP2_TEXEL_ELEMENTS": "399"},
+                       "its objects need 400 texels of 16 bytes, and one texel buffer holds "
+                       "at most 399")):
         status, _, err = run(c.tp2, ["--bvh-min", "1000", scene, out, "8", "6"], env)
-        if ok:
+        if want is None:
             c.expect(status == 0 and err == "", f"exit {status}, stderr {err!r}")
             os.unlink(out)
         else:
             c.expect(status == 1 and err.startswith("tp2: scene too large for device '")
-                     and "its objects need 6400 bytes" in err and "at most 4096" in err,
-                     f"exit {status}, stderr {err!r}")
+                     and want in err, f"exit {status}, stderr {err!r}")
     c.expect(sorted(os.listdir(c.tmp)) == ["scene.txt"], f"left {os.listdir(c.tmp)}")
 
 

@@ -6,7 +6,10 @@
  * TP2_BINDING_* and its DescriptorSet 0, the runtime array's ArrayStride
  * equals sizeof the C struct, and each member of the GLSL struct has the
  * C field's name, offset, size and scalar type, with as many members as the
- * C table has fields. The storage buffers' bindings must be exactly
+ * C table has fields. The objects and the BVH nodes are texel buffers
+ * (usamplerBuffer: checked by name, binding and image type; their texel
+ * layout is pinned by asserts in gpu_layout.h and bvh.h). The bindings of
+ * storage and texel buffers together must be exactly
  * 0 .. TP2_BINDING_COUNT - 1, so a buffer added on one side only shows up.
  * Prints "N passed, M failed" last; exits 0 only when nothing failed. */
 #include <stdarg.h>
@@ -41,6 +44,8 @@ enum {
     OP_MEMBER_NAME = 6,
     OP_TYPE_INT = 21,
     OP_TYPE_FLOAT = 22,
+    OP_TYPE_IMAGE = 25,
+    OP_TYPE_SAMPLED_IMAGE = 27,
     OP_TYPE_VECTOR = 23,
     OP_TYPE_ARRAY = 28,
     OP_TYPE_RUNTIME_ARRAY = 29,
@@ -55,7 +60,9 @@ enum {
     DEC_BINDING = 33,
     DEC_DESCRIPTOR_SET = 34,
     DEC_OFFSET = 35,
+    SC_UNIFORM_CONSTANT = 0,
     SC_STORAGE_BUFFER = 12,
+    DIM_BUFFER = 5,
     SPV_MAGIC = 0x07230203,
 };
 
@@ -296,8 +303,6 @@ struct buffer {
 #define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
 #define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
-#define OBJECT_FIELDS(F, T) F(T, a) F(T, b) F(T, c) F(T, ids)
-#define BVH_FIELDS(F, T) F(T, x) F(T, y) F(T, z) F(T, link) F(T, pad)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color)
 #define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info)
 
@@ -306,13 +311,10 @@ FIELDS(FRAME_FIELDS, gpu_frame_f)
 FIELDS(LIGHT_FIELDS, gpu_light_f)
 FIELDS(PIGMENT_FIELDS, gpu_pigment_f)
 FIELDS(FINISH_FIELDS, gpu_finish_f)
-FIELDS(OBJECT_FIELDS, gpu_object_f)
 FIELDS(FRAME_FIELDS, gpu_frame_d)
 FIELDS(LIGHT_FIELDS, gpu_light_d)
 FIELDS(PIGMENT_FIELDS, gpu_pigment_d)
 FIELDS(FINISH_FIELDS, gpu_finish_d)
-FIELDS(OBJECT_FIELDS, gpu_object_d)
-FIELDS(BVH_FIELDS, bvh_gpu_node) /* float bounds in both shaders */
 FIELDS(WALK_FIELDS, gpu_walk)  /* no reals: the same in both */
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_f)
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_d)
@@ -326,8 +328,6 @@ static const struct buffer float_buffers[] = {
     BUFFER("LightBuf", "Light", gpu_light_f, TP2_BINDING_LIGHTS, 1),
     BUFFER("PigmentBuf", "Pigment", gpu_pigment_f, TP2_BINDING_PIGMENTS, 1),
     BUFFER("FinishBuf", "Finish", gpu_finish_f, TP2_BINDING_FINISHES, 1),
-    BUFFER("ObjectBuf", "Object", gpu_object_f, TP2_BINDING_OBJECTS, 1),
-    BUFFER("BvhBuf", "BvhNode", bvh_gpu_node, TP2_BINDING_BVH, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_f, TP2_BINDING_WALK_RAYS, 1),
 };
@@ -337,8 +337,6 @@ static const struct buffer double_buffers[] = {
     BUFFER("LightBuf", "Light", gpu_light_d, TP2_BINDING_LIGHTS, 1),
     BUFFER("PigmentBuf", "Pigment", gpu_pigment_d, TP2_BINDING_PIGMENTS, 1),
     BUFFER("FinishBuf", "Finish", gpu_finish_d, TP2_BINDING_FINISHES, 1),
-    BUFFER("ObjectBuf", "Object", gpu_object_d, TP2_BINDING_OBJECTS, 1),
-    BUFFER("BvhBuf", "BvhNode", bvh_gpu_node, TP2_BINDING_BVH, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_d, TP2_BINDING_WALK_RAYS, 1),
 };
@@ -506,14 +504,47 @@ static void check_stats(const struct spv *m)
                      (long)(2 * TP2_STAT_COUNT * sizeof(uint32_t)), "counters");
 }
 
-/* Every storage buffer in the module: bindings exactly 0 .. COUNT - 1,
- * each once, all in set 0, so one the tables above miss is noticed. */
+/* A texel buffer of layout.glsl: the uniform variable `name`, at binding
+ * in set 0, a usamplerBuffer (sampled image of Dim Buffer over 32-bit
+ * unsigned integers), as the host's R32G32B32A32_UINT views need. */
+static void check_texel_buffer(const struct spv *m, const char *name, long binding)
+{
+    int count = 0;
+    size_t at = 0;
+    SPV_FOR(m, i, op, wc)
+        if (op == OP_VARIABLE && wc >= 4 && m->w[i + 3] == SC_UNIFORM_CONSTANT &&
+            spv_named(m, m->w[i + 2], name)) {
+            at = i;
+            count++;
+        }
+    expect(count == 1, "%s: texel buffer %s: %d variables, want 1", m->label, name, count);
+    if (count != 1)
+        return;
+    uint32_t var = m->w[at + 2];
+    expect(spv_decoration(m, var, DEC_BINDING) == binding &&
+               spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0,
+           "%s: texel buffer %s: Binding %ld in set 0", m->label, name, binding);
+    size_t ptr = spv_def(m, m->w[at + 1]);
+    size_t sampled = spv_wc(m, ptr) >= 4 ? spv_def(m, m->w[ptr + 3]) : 0;
+    size_t image = spv_op(m, sampled) == OP_TYPE_SAMPLED_IMAGE ? spv_def(m, m->w[sampled + 2]) : 0;
+    size_t elem = spv_op(m, image) == OP_TYPE_IMAGE && spv_wc(m, image) >= 9
+                      ? spv_def(m, m->w[image + 2])
+                      : 0;
+    expect(elem && m->w[image + 3] == DIM_BUFFER && m->w[image + 7] == 1 &&
+               spv_op(m, elem) == OP_TYPE_INT && m->w[elem + 2] == 32 && m->w[elem + 3] == 0,
+           "%s: texel buffer %s: a usamplerBuffer", m->label, name);
+}
+
+/* Every storage and texel buffer in the module: bindings exactly
+ * 0 .. COUNT - 1, each once, all in set 0, so one the tables above miss
+ * is noticed. */
 static void check_binding_set(const struct spv *m)
 {
     int seen[TP2_BINDING_COUNT] = {0};
     int stray = 0;
     SPV_FOR(m, i, op, wc) {
-        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != SC_STORAGE_BUFFER)
+        if (op != OP_VARIABLE || wc < 4 ||
+            (m->w[i + 3] != SC_STORAGE_BUFFER && m->w[i + 3] != SC_UNIFORM_CONSTANT))
             continue;
         long b = spv_decoration(m, m->w[i + 2], DEC_BINDING);
         if (b >= 0 && b < TP2_BINDING_COUNT)
@@ -524,7 +555,8 @@ static void check_binding_set(const struct spv *m)
     int ok = stray == 0;
     for (int b = 0; b < TP2_BINDING_COUNT; b++)
         ok &= seen[b] == 1;
-    expect(ok, "%s: " "storage buffers bound exactly once each at 0..%d (%d stray)", m->label,
+    expect(ok, "%s: " "storage and texel buffers bound exactly once each at 0..%d (%d stray)",
+           m->label,
           TP2_BINDING_COUNT - 1, stray);
 }
 
@@ -563,6 +595,8 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
     check_plain_array(m, "TexelBuf", TP2_BINDING_TEXELS, sizeof(uint32_t), KIND_U32, "uint");
     check_plain_array(m, "StartedBuf", TP2_BINDING_STARTED, sizeof(uint32_t), KIND_U32, "uint");
     check_stats(m);
+    check_texel_buffer(m, "object_texels", TP2_BINDING_OBJECTS);
+    check_texel_buffer(m, "node_texels", TP2_BINDING_BVH);
     check_binding_set(m);
 }
 
