@@ -148,6 +148,36 @@ static unsigned char *read_file(const char *path, size_t *len)
     return buf;
 }
 
+int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
+                   char *why, size_t whysize)
+{
+    memset(out, 0, sizeof *out);
+    if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6'))
+        return texture_decode_ppm(data, len, out, why, whysize);
+    int w = 0, h = 0, comp = 0;
+    if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
+        return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
+    if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS)
+        return why_said(why, whysize, "image too large (at most 32 Mi texels)");
+    /* Copied so that rgb is always ours to free(). */
+    stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
+    size_t n = (size_t)w * (size_t)h * 3;
+    int rc = -1;
+    if (!img) {
+        if (why && whysize > 0)
+            snprintf(why, whysize, "cannot decode the image (%s)", stbi_failure_reason());
+    } else if (!(out->rgb = malloc(n))) {
+        why_said(why, whysize, "out of memory");
+    } else {
+        memcpy(out->rgb, img, n);
+        out->width = w;
+        out->height = h;
+        rc = 0;
+    }
+    stbi_image_free(img);
+    return rc;
+}
+
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize)
 {
@@ -157,34 +187,7 @@ int texture_load(const char *path, struct texture_image *out, char *why,
     unsigned char *data = read_file(path, &len);
     if (!data)
         return why_said(why, whysize, strerror(errno ? errno : EIO));
-    int rc = -1;
-    if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6')) {
-        rc = texture_decode_ppm(data, len, out, why, whysize);
-    } else {
-        int w = 0, h = 0, comp = 0;
-        if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp)) {
-            why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
-        } else if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS) {
-            why_said(why, whysize, "image too large (at most 32 Mi texels)");
-        } else {
-            /* Copied so that rgb is always ours to free(). */
-            stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
-            size_t n = (size_t)w * (size_t)h * 3;
-            if (!img) {
-                if (why && whysize > 0)
-                    snprintf(why, whysize, "cannot decode the image (%s)",
-                             stbi_failure_reason());
-            } else if (!(out->rgb = malloc(n))) {
-                why_said(why, whysize, "out of memory");
-            } else {
-                memcpy(out->rgb, img, n);
-                out->width = w;
-                out->height = h;
-                rc = 0;
-            }
-            stbi_image_free(img);
-        }
-    }
+    int rc = texture_decode(data, len, out, why, whysize);
     free(data);
     return rc;
 }

@@ -26,6 +26,12 @@ struct texture_image {
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize);
 
+/* Decodes an image file's len bytes held in memory, whatever its format
+ * (PPM by its magic P3 or P6, else stb_image); as texture_load. Decoding
+ * apart from reading, so that it can be tested and fuzzed without files. */
+int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
+                   char *why, size_t whysize);
+
 /* Decodes a PPM (P3 or P6, '#' comments, maxval 1..65535) held in memory;
  * as texture_load. Values are scaled to 8 bits, round(255 v / maxval). */
 int texture_decode_ppm(const unsigned char *data, size_t len,
