@@ -148,12 +148,71 @@ static unsigned char *read_file(const char *path, size_t *len)
     return buf;
 }
 
+/* ---- JPEG Huffman tables ------------------------------------------------ */
+
+/* stb_image 2.27 (Debian 12's libstb) trusts a JPEG's DHT segments: a
+ * Huffman table whose 16 code counts add up to more than 256 writes past
+ * its fixed arrays (upstream 2.28 refuses it: "bad DHT header"). Found by
+ * tests/fuzz/fuzz_image.c. This walks the markers as stb reads them,
+ * header and scans alike (stb skips stray bytes between markers, stuffed
+ * FF 00 and restart markers inside a scan, and reads past the end as
+ * zeros), and says false when a table stb would read has such counts. It
+ * never stops where stb goes on, so it may look at more than stb does. */
+static unsigned jpeg_byte(const unsigned char *d, size_t len, size_t i)
+{
+    return i < len ? d[i] : 0;
+}
+
+static bool jpeg_huffman_ok(const unsigned char *d, size_t len)
+{
+    size_t i = 0;
+    while (i < len) {
+        if (d[i] != 0xFF) { /* entropy-coded data, or bytes stb skips */
+            i++;
+            continue;
+        }
+        while (i < len && d[i] == 0xFF) /* fill bytes */
+            i++;
+        if (i >= len)
+            break;
+        unsigned m = d[i++];
+        if (m == 0xD9) /* EOI: stb reads no further */
+            break;
+        if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD8))
+            continue; /* stuffed byte, TEM, RSTn, SOI: no length */
+        size_t seglen = jpeg_byte(d, len, i) << 8 | jpeg_byte(d, len, i + 1);
+        if (m == 0xC4) {
+            long rest = (long)seglen - 2;
+            size_t p = i + 2;
+            while (rest > 0) {
+                unsigned q = jpeg_byte(d, len, p);
+                if (q >> 4 > 1 || (q & 15) > 3)
+                    break; /* stb refuses the segment */
+                unsigned n = 0;
+                for (size_t k = 1; k <= 16; k++)
+                    n += jpeg_byte(d, len, p + k);
+                if (n > 256)
+                    return false;
+                p += 17 + n;
+                rest -= 17 + (long)n;
+            }
+        }
+        i += seglen;
+    }
+    return true;
+}
+
+/* ---- any format -------------------------------------------------------- */
+
 int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
                    char *why, size_t whysize)
 {
     memset(out, 0, sizeof *out);
     if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6'))
         return texture_decode_ppm(data, len, out, why, whysize);
+    if (len >= 2 && data[0] == 0xFF && !jpeg_huffman_ok(data, len))
+        return why_said(why, whysize, "corrupt JPEG (a Huffman table of more than "
+                                      "256 codes)");
     int w = 0, h = 0, comp = 0;
     if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
         return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
