@@ -216,13 +216,20 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
     int w = 0, h = 0, comp = 0;
     if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
         return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
+    /* stb_image 2.27 reads a PNM (P5) of 0 x 0 as an image; it has no
+     * texel to show (found by tests/fuzz/fuzz_image.c). The height of a
+     * top-down BMP comes negative here. */
+    if (w == 0 || h == 0)
+        return why_said(why, whysize, "image of no texels (a width or height of 0)");
     if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS)
         return why_said(why, whysize, "image too large (at most 32 Mi texels)");
     /* Copied so that rgb is always ours to free(). */
     stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
     size_t n = (size_t)w * (size_t)h * 3;
     int rc = -1;
-    if (!img) {
+    if (img && (w < 1 || h < 1)) {
+        why_said(why, whysize, "image of no texels (a width or height of 0)");
+    } else if (!img) {
         if (why && whysize > 0)
             snprintf(why, whysize, "cannot decode the image (%s)", stbi_failure_reason());
     } else if (!(out->rgb = malloc(n))) {

@@ -256,6 +256,17 @@ static void test_jpeg_huffman(void)
     jpeg_append(&bad, "\xff\xd9", 2);
     expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0,
            "DHT after the scan: %s", why);
+    /* A PNM of 0 x 0, which stb_image 2.27 reads as an image (found by
+     * tests/fuzz/fuzz_image.c), and of 0 x 1. */
+    struct texture_image t;
+    static const char *empty[] = {"P5\n0 0\n255\n", "P5 0 1 255 "};
+    for (int i = 0; i < 2; i++) {
+        int rc = texture_decode((const unsigned char *)empty[i], strlen(empty[i]), &t, why,
+                                sizeof why);
+        expect(rc == -1 && !t.rgb &&
+                   strcmp(why, "image of no texels (a width or height of 0)") == 0,
+               "PNM %d: rc %d, %s", i, rc, why);
+    }
     /* After EOI stb reads no more, nor does the check. */
     bad = good;
     jpeg_append(&bad, (void *)late, (int)sizeof late);
