@@ -213,6 +213,15 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
     if (len >= 2 && data[0] == 0xFF && !jpeg_huffman_ok(data, len))
         return why_said(why, whysize, "corrupt JPEG (a Huffman table of more than "
                                       "256 codes)");
+    /* stb_image 2.27 reads a 16-bit PGM (P5, maxval above 255) past its
+     * buffer (found by tests/fuzz/fuzz_image.c): only 8-bit ones go to it.
+     * The header is read as stb reads it; one not read whole is refused. */
+    if (len >= 2 && data[0] == 'P' && data[1] == '5') {
+        struct ppm_cursor c = {data + 2, data + len};
+        long w = ppm_number(&c), h = ppm_number(&c), maxval = ppm_number(&c);
+        if (w < 0 || h < 0 || maxval < 0 || maxval > 255)
+            return why_said(why, whysize, "PGM (P5) of more than 8 bits or malformed");
+    }
     int w = 0, h = 0, comp = 0;
     if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
         return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");

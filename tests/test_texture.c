@@ -267,6 +267,12 @@ static void test_jpeg_huffman(void)
                    strcmp(why, "image of no texels (a width or height of 0)") == 0,
                "PNM %d: rc %d, %s", i, rc, why);
     }
+    /* A 16-bit PGM, which stb_image 2.27 reads past its buffer (found by
+     * tests/fuzz/fuzz_image.c). */
+    static const char pgm16[] = "P5 2 1 1000 \x01\x02\x03\x04";
+    int rc = texture_decode((const unsigned char *)pgm16, sizeof pgm16 - 1, &t, why, sizeof why);
+    expect(rc == -1 && strcmp(why, "PGM (P5) of more than 8 bits or malformed") == 0,
+           "16-bit PGM: rc %d, %s", rc, why);
     /* After EOI stb reads no more, nor does the check. */
     bad = good;
     jpeg_append(&bad, (void *)late, (int)sizeof late);
