@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "obj_read.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -210,6 +211,17 @@ static int read_face(struct obj_reader *r, char *s)
     return 0;
 }
 
+/* A read error (errno set): "tp2: cannot read 'NAME': REASON", as the
+ * parser says of a scene; a line number would be 0 before any line, as
+ * for a directory (found by tests/fuzz/fuzz_scene.c). */
+static int fail_read(struct obj_reader *r)
+{
+    int saved = errno ? errno : EIO;
+    if (r->err && r->errsize > 0)
+        snprintf(r->err, r->errsize, "tp2: cannot read '%s': %s", r->name, strerror(saved));
+    return -1;
+}
+
 /* Reads the next line into r->line without its newline or comment;
  * returns 1, 0 at the end, -1 on error. */
 static int next_line(struct obj_reader *r)
@@ -217,7 +229,7 @@ static int next_line(struct obj_reader *r)
     size_t n = 0;
     int c = getc_unlocked(r->f);
     if (c == EOF)
-        return ferror(r->f) ? fail(r, 1, "cannot read the file") : 0;
+        return ferror(r->f) ? fail_read(r) : 0;
     r->lineno++;
     for (; c != EOF && c != '\n'; c = getc_unlocked(r->f)) {
         if (c == '\0')
@@ -227,7 +239,7 @@ static int next_line(struct obj_reader *r)
         r->line[n++] = (char)c;
     }
     if (ferror(r->f))
-        return fail(r, 1, "cannot read the file");
+        return fail_read(r);
     r->line[n] = '\0';
     char *hash = strchr(r->line, '#');
     if (hash)

@@ -24,8 +24,8 @@ struct obj_mesh {
 
 /* Reads f, called name in messages. Returns 0 and fills *out (free it with
  * obj_mesh_free), or -1 with *out zeroed and one line in err (cut to
- * errsize bytes): "NAME:LINE:COL: error: ...", or "tp2: out of memory
- * ...". A file with no faces is not an error here (ntri is 0). */
+ * errsize bytes): "NAME:LINE:COL: error: ...", "tp2: cannot read 'NAME': REASON"
+ * or "tp2: out of memory ...". A file with no faces is not an error here (ntri is 0). */
 int obj_read(FILE *f, const char *name, struct obj_mesh *out, char *err,
              size_t errsize);
 

@@ -158,6 +158,111 @@ static unsigned char *read_file(const char *path, size_t *len)
     return buf;
 }
 
+/* ---- JPEG Huffman tables ------------------------------------------------ */
+
+/* stb_image 2.27 (Debian 12's libstb) trusts a JPEG's DHT segments: a
+ * Huffman table whose 16 code counts add up to more than 256 writes past
+ * its fixed arrays (upstream 2.28 refuses it: "bad DHT header"). Found by
+ * tests/fuzz/fuzz_image.c. This walks the markers as stb reads them,
+ * header and scans alike (stb skips stray bytes between markers, stuffed
+ * FF 00 and restart markers inside a scan, and reads past the end as
+ * zeros), and says false when a table stb would read has such counts. It
+ * never stops where stb goes on, so it may look at more than stb does. */
+static unsigned jpeg_byte(const unsigned char *d, size_t len, size_t i)
+{
+    return i < len ? d[i] : 0;
+}
+
+static bool jpeg_huffman_ok(const unsigned char *d, size_t len)
+{
+    size_t i = 0;
+    while (i < len) {
+        if (d[i] != 0xFF) { /* entropy-coded data, or bytes stb skips */
+            i++;
+            continue;
+        }
+        while (i < len && d[i] == 0xFF) /* fill bytes */
+            i++;
+        if (i >= len)
+            break;
+        unsigned m = d[i++];
+        if (m == 0xD9) /* EOI: stb reads no further */
+            break;
+        if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD8))
+            continue; /* stuffed byte, TEM, RSTn, SOI: no length */
+        size_t seglen = jpeg_byte(d, len, i) << 8 | jpeg_byte(d, len, i + 1);
+        if (m == 0xC4) {
+            long rest = (long)seglen - 2;
+            size_t p = i + 2;
+            while (rest > 0) {
+                unsigned q = jpeg_byte(d, len, p);
+                if (q >> 4 > 1 || (q & 15) > 3)
+                    break; /* stb refuses the segment */
+                unsigned n = 0;
+                for (size_t k = 1; k <= 16; k++)
+                    n += jpeg_byte(d, len, p + k);
+                if (n > 256)
+                    return false;
+                p += 17 + n;
+                rest -= 17 + (long)n;
+            }
+        }
+        i += seglen;
+    }
+    return true;
+}
+
+/* ---- any format -------------------------------------------------------- */
+
+int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
+                   char *why, size_t whysize)
+{
+    memset(out, 0, sizeof *out);
+    if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6'))
+        return texture_decode_ppm(data, len, out, why, whysize);
+    if (len >= 2 && data[0] == 0xFF && !jpeg_huffman_ok(data, len))
+        return why_said(why, whysize, "corrupt JPEG (a Huffman table of more than "
+                                      "256 codes)");
+    /* stb_image 2.27 reads a 16-bit PGM (P5, maxval above 255) past its
+     * buffer (found by tests/fuzz/fuzz_image.c): only 8-bit ones go to it.
+     * The header is read as stb reads it; one not read whole is refused. */
+    if (len >= 2 && data[0] == 'P' && data[1] == '5') {
+        struct ppm_cursor c = {data + 2, data + len};
+        long w = ppm_number(&c), h = ppm_number(&c), maxval = ppm_number(&c);
+        if (w < 0 || h < 0 || maxval < 0 || maxval > 255)
+            return why_said(why, whysize, "PGM (P5) of more than 8 bits or malformed");
+    }
+    int w = 0, h = 0, comp = 0;
+    if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
+        return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
+    /* stb_image 2.27 reads a PNM (P5) of 0 x 0 as an image; it has no
+     * texel to show (found by tests/fuzz/fuzz_image.c). The height of a
+     * top-down BMP comes negative here. */
+    if (w == 0 || h == 0)
+        return why_said(why, whysize, "image of no texels (a width or height of 0)");
+    if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS)
+        return why_said(why, whysize, "image too large (at most 32 Mi texels)");
+    /* Copied so that rgb is always ours to free(). */
+    stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
+    size_t n = (size_t)w * (size_t)h * 3;
+    int rc = -1;
+    if (img && (w < 1 || h < 1)) {
+        why_said(why, whysize, "image of no texels (a width or height of 0)");
+    } else if (!img) {
+        if (why && whysize > 0)
+            snprintf(why, whysize, "cannot decode the image (%s)", stbi_failure_reason());
+    } else if (!(out->rgb = malloc(n))) {
+        why_said(why, whysize, "out of memory");
+    } else {
+        memcpy(out->rgb, img, n);
+        out->width = w;
+        out->height = h;
+        rc = 0;
+    }
+    stbi_image_free(img);
+    return rc;
+}
+
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize)
 {
@@ -167,34 +272,7 @@ int texture_load(const char *path, struct texture_image *out, char *why,
     unsigned char *data = read_file(path, &len);
     if (!data)
         return why_said(why, whysize, strerror(errno ? errno : EIO));
-    int rc = -1;
-    if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6')) {
-        rc = texture_decode_ppm(data, len, out, why, whysize);
-    } else {
-        int w = 0, h = 0, comp = 0;
-        if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp)) {
-            why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
-        } else if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS) {
-            why_said(why, whysize, "image too large (at most 32 Mi texels)");
-        } else {
-            /* Copied so that rgb is always ours to free(). */
-            stbi_uc *img = stbi_load_from_memory(data, (int)len, &w, &h, &comp, 3);
-            size_t n = (size_t)w * (size_t)h * 3;
-            if (!img) {
-                if (why && whysize > 0)
-                    snprintf(why, whysize, "cannot decode the image (%s)",
-                             stbi_failure_reason());
-            } else if (!(out->rgb = malloc(n))) {
-                why_said(why, whysize, "out of memory");
-            } else {
-                memcpy(out->rgb, img, n);
-                out->width = w;
-                out->height = h;
-                rc = 0;
-            }
-            stbi_image_free(img);
-        }
-    }
+    int rc = texture_decode(data, len, out, why, whysize);
     free(data);
     return rc;
 }

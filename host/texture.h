@@ -11,8 +11,11 @@
 #include <stdint.h>
 
 /* Most texels in one image: 32 Mi texels of 4 bytes fill lavapipe's
- * largest storage buffer (128 MiB). */
+ * largest storage buffer (128 MiB). The fuzz build lowers it (a header
+ * claiming a large image then costs no decode of zeros), nothing else. */
+#ifndef TEXTURE_MAX_TEXELS
 #define TEXTURE_MAX_TEXELS ((size_t)1 << 25)
+#endif
 
 struct texture_image {
     int width, height;
@@ -25,6 +28,12 @@ struct texture_image {
  * image", "PPM data ends early", ...). */
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize);
+
+/* Decodes an image file's len bytes held in memory, whatever its format
+ * (PPM by its magic P3 or P6, else stb_image); as texture_load. Decoding
+ * apart from reading, so that it can be tested and fuzzed without files. */
+int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
+                   char *why, size_t whysize);
 
 /* Decodes a PPM (P3 or P6, '#' comments, maxval 1..65535) held in memory;
  * as texture_load. Values are scaled to 8 bits, round(255 v / maxval). */

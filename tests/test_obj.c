@@ -154,11 +154,29 @@ static void test_errors(void)
     free(long_line);
 }
 
+/* A file that cannot be read, such as a directory (a scene may name one):
+ * the reason, and no line 0 (found by tests/fuzz/fuzz_scene.c). */
+static void test_unreadable(void)
+{
+    FILE *f = fopen("/", "rb");
+    if (!f) {
+        expect(1, "skipped: / cannot be opened");
+        return;
+    }
+    struct obj_mesh m;
+    char err[256];
+    int rc = obj_read(f, "/", &m, err, sizeof err);
+    fclose(f);
+    expect(rc == -1 && !m.tri && strcmp(err, "tp2: cannot read '/': Is a directory") == 0,
+           "directory: rc %d, %s", rc, err);
+}
+
 int main(void)
 {
     test_forms();
     test_degenerate_dropped();
     test_no_faces();
     test_errors();
+    test_unreadable();
     return unit_report();
 }

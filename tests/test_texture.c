@@ -5,7 +5,9 @@
  * refused with its reason. Files: an asymmetric 3 x 2 image written as
  * BMP (bottom-up by stb_image_write, top-down by hand), PNG and JPEG
  * (approximately: lossy) must come back with its rows top to bottom and
- * R, G, B in place. Prints "N passed, M failed" last. */
+ * R, G, B in place. JPEG Huffman tables of more than 256 codes, which
+ * overflow stb_image 2.27 (found by tests/fuzz/fuzz_image.c), refused
+ * wherever they come. Prints "N passed, M failed" last. */
 #define _DEFAULT_SOURCE /* mkstemps, truncate */
 #include <stdint.h>
 #include <stdio.h>
@@ -193,10 +195,95 @@ static void test_files(void)
     expect(rc == -1 && strcmp(why, "No such file or directory") == 0, "missing: %s", why);
 }
 
+/* stbi_write_*_to_func's sink: appends to a struct jpeg_buf. */
+struct jpeg_buf {
+    unsigned char data[4096];
+    size_t len;
+};
+
+static void jpeg_append(void *ctx, void *data, int size)
+{
+    struct jpeg_buf *b = ctx;
+    if (size > 0 && b->len + (size_t)size <= sizeof b->data) {
+        memcpy(b->data + b->len, data, (size_t)size);
+        b->len += (size_t)size;
+    }
+}
+
+/* texture_decode on the whole of b: 0, or -1 with why. */
+static int decode_any(const struct jpeg_buf *b, char *why)
+{
+    struct texture_image t;
+    int rc = texture_decode(b->data, b->len, &t, why, 128);
+    free(t.rgb);
+    return rc;
+}
+
+static void test_jpeg_huffman(void)
+{
+    static const char refused[] = "corrupt JPEG (a Huffman table of more than 256 codes)";
+    struct jpeg_buf good = {.len = 0}, bad;
+    char why[128];
+    CHECK(stbi_write_jpg_to_func(jpeg_append, &good, 3, 2, 3, image, 90) != 0);
+    expect(decode_any(&good, why) == 0, "JPEG: %s", why);
+    /* The first DHT's first table given 2 * 255 codes of 16 bits. */
+    size_t dht = 2;
+    while (dht + 1 < good.len && !(good.data[dht] == 0xFF && good.data[dht + 1] == 0xC4))
+        dht++;
+    CHECK(dht + 21 < good.len);
+    bad = good;
+    bad.data[dht + 4 + 15] = 255;
+    bad.data[dht + 4 + 16] = 255;
+    expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0,
+           "DHT of 510+ codes in the header: %s", why);
+    /* The same behind fill bytes (FF FF C4: stb skips them). */
+    bad.len = 0;
+    jpeg_append(&bad, good.data, (int)dht);
+    jpeg_append(&bad, "\xff\xff", 2);
+    jpeg_append(&bad, good.data + dht, (int)(good.len - dht));
+    bad.data[dht + 2 + 4 + 16] = 255;
+    bad.data[dht + 2 + 4 + 15] = 255;
+    expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0,
+           "DHT behind fill bytes: %s", why);
+    /* After the scan, before EOI, where a progressive JPEG has its next
+     * tables: stb reads it once the scan's data is decoded. */
+    static const unsigned char late[] = {
+        0xFF, 0xC4, 0x00, 0x13, 0x00, /* DC table 0 */
+        0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 255};
+    bad.len = 0;
+    jpeg_append(&bad, good.data, (int)good.len - 2);
+    jpeg_append(&bad, (void *)late, (int)sizeof late);
+    jpeg_append(&bad, "\xff\xd9", 2);
+    expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0,
+           "DHT after the scan: %s", why);
+    /* A PNM of 0 x 0, which stb_image 2.27 reads as an image (found by
+     * tests/fuzz/fuzz_image.c), and of 0 x 1. */
+    struct texture_image t;
+    static const char *empty[] = {"P5\n0 0\n255\n", "P5 0 1 255 "};
+    for (int i = 0; i < 2; i++) {
+        int rc = texture_decode((const unsigned char *)empty[i], strlen(empty[i]), &t, why,
+                                sizeof why);
+        expect(rc == -1 && !t.rgb &&
+                   strcmp(why, "image of no texels (a width or height of 0)") == 0,
+               "PNM %d: rc %d, %s", i, rc, why);
+    }
+    /* A 16-bit PGM, which stb_image 2.27 reads past its buffer (found by
+     * tests/fuzz/fuzz_image.c). */
+    static const char pgm16[] = "P5 2 1 1000 \x01\x02\x03\x04";
+    int rc = texture_decode((const unsigned char *)pgm16, sizeof pgm16 - 1, &t, why, sizeof why);
+    expect(rc == -1 && strcmp(why, "PGM (P5) of more than 8 bits or malformed") == 0,
+           "16-bit PGM: rc %d, %s", rc, why);
+    /* After EOI stb reads no more, nor does the check. */
+    bad = good;
+    jpeg_append(&bad, (void *)late, (int)sizeof late);
+    expect(decode_any(&bad, why) == 0, "DHT after EOI: %s", why);
+}
+
 int main(void)
 {
     test_ppm();
     test_ppm_errors();
     test_files();
+    test_jpeg_huffman();
     return unit_report();
 }
