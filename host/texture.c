@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -212,6 +213,30 @@ static bool jpeg_huffman_ok(const unsigned char *d, size_t len)
     return true;
 }
 
+/* ---- PNG chunk lengths ------------------------------------------------- */
+
+/* stb_image 2.27 grows its buffer for an IDAT chunk to the length the
+ * chunk claims before reading it: 94 bytes claiming 1.7 GB made it ask for
+ * 2 GiB (found by tests/fuzz/fuzz_image.c). The whole file is in memory,
+ * so a chunk (length, type, data, CRC) longer than what is left of it is
+ * refused first; no valid PNG has one. */
+static bool png_chunks_fit(const unsigned char *d, size_t len)
+{
+    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (len < 8 || memcmp(d, signature, 8) != 0)
+        return true; /* not a PNG */
+    for (size_t i = 8; i + 8 <= len;) {
+        uint32_t n = (uint32_t)d[i] << 24 | (uint32_t)d[i + 1] << 16 |
+                     (uint32_t)d[i + 2] << 8 | d[i + 3];
+        if (n > len - i - 8 || len - i - 8 - n < 4)
+            return false;
+        if (memcmp(d + i + 4, "IEND", 4) == 0)
+            break;
+        i += 12 + (size_t)n;
+    }
+    return true;
+}
+
 /* ---- any format -------------------------------------------------------- */
 
 int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
@@ -223,6 +248,8 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
     if (len >= 2 && data[0] == 0xFF && !jpeg_huffman_ok(data, len))
         return why_said(why, whysize, "corrupt JPEG (a Huffman table of more than "
                                       "256 codes)");
+    if (!png_chunks_fit(data, len))
+        return why_said(why, whysize, "corrupt PNG (a chunk longer than the file)");
     /* stb_image 2.27 reads a 16-bit PGM (P5, maxval above 255) past its
      * buffer (found by tests/fuzz/fuzz_image.c): only 8-bit ones go to it.
      * The header is read as stb reads it; one not read whole is refused. */

@@ -279,11 +279,35 @@ static void test_jpeg_huffman(void)
     expect(decode_any(&bad, why) == 0, "DHT after EOI: %s", why);
 }
 
+/* A PNG chunk claiming more bytes than the file has: stb_image 2.27 sizes
+ * its IDAT buffer by the claim before reading (2 GiB for a 94-byte file
+ * found by tests/fuzz/fuzz_image.c), so it is refused first. */
+static void test_png_chunks(void)
+{
+    static const char refused[] = "corrupt PNG (a chunk longer than the file)";
+    struct jpeg_buf good = {.len = 0}, bad;
+    char why[128];
+    CHECK(stbi_write_png_to_func(jpeg_append, &good, 3, 2, 3, image, 9) != 0);
+    expect(decode_any(&good, why) == 0, "PNG: %s", why);
+    size_t idat = 8;
+    while (idat + 8 < good.len && memcmp(good.data + idat + 4, "IDAT", 4) != 0)
+        idat += 12 + ((size_t)good.data[idat + 2] << 8 | good.data[idat + 3]);
+    CHECK(idat + 8 < good.len);
+    bad = good;
+    memcpy(bad.data + idat, "\x66\x6e\x6f\x38", 4); /* 1718513720 bytes */
+    expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0,
+           "IDAT claiming 1.7 GB: %s", why);
+    bad = good;
+    bad.len = idat + 10; /* cut inside the IDAT */
+    expect(decode_any(&bad, why) == -1 && strcmp(why, refused) == 0, "cut PNG: %s", why);
+}
+
 int main(void)
 {
     test_ppm();
     test_ppm_errors();
     test_files();
     test_jpeg_huffman();
+    test_png_chunks();
     return unit_report();
 }
