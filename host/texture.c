@@ -8,8 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <setjmp.h>
 #include <sys/stat.h>
 
+#include <jpeglib.h>
 #include <stb_image.h>
 
 /* Largest image file read (a larger one is refused: "File too large"):
@@ -159,58 +161,75 @@ static unsigned char *read_file(const char *path, size_t *len)
     return buf;
 }
 
-/* ---- JPEG Huffman tables ------------------------------------------------ */
+/* ---- JPEG ------------------------------------------------------------- */
 
-/* stb_image 2.27 (Debian 12's libstb) trusts a JPEG's DHT segments: a
- * Huffman table whose 16 code counts add up to more than 256 writes past
- * its fixed arrays (upstream 2.28 refuses it: "bad DHT header"). Found by
- * tests/fuzz/fuzz_image.c. This walks the markers as stb reads them,
- * header and scans alike (stb skips stray bytes between markers, stuffed
- * FF 00 and restart markers inside a scan, and reads past the end as
- * zeros), and says false when a table stb would read has such counts. It
- * never stops where stb goes on, so it may look at more than stb does. */
-static unsigned jpeg_byte(const unsigned char *d, size_t len, size_t i)
+/* JPEG goes to libjpeg-turbo, not to stb_image: fuzzing stb_image 2.27
+ * (Debian 12's) found a Huffman table overflowing its arrays and shifts
+ * past 32 bits on corrupt entropy-coded data (upstream 2.28 fixed both;
+ * tests/fuzz/fuzz_image.c), while libjpeg-turbo checks its input and is
+ * fuzzed continuously upstream. Its errors jump back here. */
+struct jpeg_failure {
+    struct jpeg_error_mgr mgr;
+    jmp_buf back;
+    char message[JMSG_LENGTH_MAX];
+};
+
+static void jpeg_fail(j_common_ptr info)
 {
-    return i < len ? d[i] : 0;
+    struct jpeg_failure *f = (struct jpeg_failure *)info->err;
+    f->mgr.format_message(info, f->message);
+    longjmp(f->back, 1);
 }
 
-static bool jpeg_huffman_ok(const unsigned char *d, size_t len)
+/* Warnings (a corrupt but readable stream) are not printed: the decode
+ * goes on as libjpeg intends. */
+static void jpeg_quiet(j_common_ptr info)
 {
-    size_t i = 0;
-    while (i < len) {
-        if (d[i] != 0xFF) { /* entropy-coded data, or bytes stb skips */
-            i++;
-            continue;
-        }
-        while (i < len && d[i] == 0xFF) /* fill bytes */
-            i++;
-        if (i >= len)
-            break;
-        unsigned m = d[i++];
-        if (m == 0xD9) /* EOI: stb reads no further */
-            break;
-        if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD8))
-            continue; /* stuffed byte, TEM, RSTn, SOI: no length */
-        size_t seglen = jpeg_byte(d, len, i) << 8 | jpeg_byte(d, len, i + 1);
-        if (m == 0xC4) {
-            long rest = (long)seglen - 2;
-            size_t p = i + 2;
-            while (rest > 0) {
-                unsigned q = jpeg_byte(d, len, p);
-                if (q >> 4 > 1 || (q & 15) > 3)
-                    break; /* stb refuses the segment */
-                unsigned n = 0;
-                for (size_t k = 1; k <= 16; k++)
-                    n += jpeg_byte(d, len, p + k);
-                if (n > 256)
-                    return false;
-                p += 17 + n;
-                rest -= 17 + (long)n;
-            }
-        }
-        i += seglen;
+    (void)info;
+}
+
+static int texture_decode_jpeg(const unsigned char *data, size_t len,
+                               struct texture_image *out, char *why, size_t whysize)
+{
+    struct jpeg_decompress_struct info;
+    struct jpeg_failure failure;
+    /* volatile: set after setjmp and read after a longjmp back to it */
+    unsigned char *volatile rgb = NULL;
+    info.err = jpeg_std_error(&failure.mgr);
+    failure.mgr.error_exit = jpeg_fail;
+    failure.mgr.output_message = jpeg_quiet;
+    if (setjmp(failure.back)) {
+        jpeg_destroy_decompress(&info);
+        free(rgb);
+        if (why && whysize > 0)
+            snprintf(why, whysize, "cannot decode the JPEG (%s)", failure.message);
+        return -1;
     }
-    return true;
+    jpeg_create_decompress(&info);
+    jpeg_mem_src(&info, data, (unsigned long)len);
+    jpeg_read_header(&info, TRUE);
+    if ((size_t)info.image_width * info.image_height > TEXTURE_MAX_TEXELS) {
+        jpeg_destroy_decompress(&info);
+        return why_said(why, whysize, "image too large (at most 32 Mi texels)");
+    }
+    info.out_color_space = JCS_RGB;
+    jpeg_start_decompress(&info);
+    size_t row = (size_t)info.output_width * 3;
+    rgb = malloc(row * info.output_height);
+    if (!rgb) {
+        jpeg_destroy_decompress(&info);
+        return why_said(why, whysize, "out of memory");
+    }
+    while (info.output_scanline < info.output_height) {
+        JSAMPROW at = rgb + row * info.output_scanline;
+        jpeg_read_scanlines(&info, &at, 1);
+    }
+    jpeg_finish_decompress(&info);
+    out->width = (int)info.output_width;
+    out->height = (int)info.output_height;
+    out->rgb = rgb;
+    jpeg_destroy_decompress(&info);
+    return 0;
 }
 
 /* ---- PNG chunk lengths ------------------------------------------------- */
@@ -245,9 +264,10 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
     memset(out, 0, sizeof *out);
     if (len >= 2 && data[0] == 'P' && (data[1] == '3' || data[1] == '6'))
         return texture_decode_ppm(data, len, out, why, whysize);
-    if (len >= 2 && data[0] == 0xFF && !jpeg_huffman_ok(data, len))
-        return why_said(why, whysize, "corrupt JPEG (a Huffman table of more than "
-                                      "256 codes)");
+    /* stb_image takes any data whose first byte is FF for a JPEG (fill
+     * bytes may precede the start marker); libjpeg-turbo gets all of it. */
+    if (len >= 1 && data[0] == 0xFF)
+        return texture_decode_jpeg(data, len, out, why, whysize);
     if (!png_chunks_fit(data, len))
         return why_said(why, whysize, "corrupt PNG (a chunk longer than the file)");
     /* stb_image 2.27 reads a 16-bit PGM (P5, maxval above 255) past its

@@ -6,8 +6,9 @@
  * BMP (bottom-up by stb_image_write, top-down by hand), PNG and JPEG
  * (approximately: lossy) must come back with its rows top to bottom and
  * R, G, B in place. JPEG Huffman tables of more than 256 codes, which
- * overflow stb_image 2.27 (found by tests/fuzz/fuzz_image.c), refused
- * wherever they come. Prints "N passed, M failed" last. */
+ * overflow stb_image 2.27 (found by tests/fuzz/fuzz_image.c; JPEG now
+ * goes to libjpeg-turbo), refused wherever they come; PNG chunks longer
+ * than the file refused. Prints "N passed, M failed" last. */
 #define _DEFAULT_SOURCE /* mkstemps, truncate */
 #include <stdint.h>
 #include <stdio.h>
@@ -221,7 +222,7 @@ static int decode_any(const struct jpeg_buf *b, char *why)
 
 static void test_jpeg_huffman(void)
 {
-    static const char refused[] = "corrupt JPEG (a Huffman table of more than 256 codes)";
+    static const char refused[] = "cannot decode the JPEG (Bogus Huffman table definition)";
     struct jpeg_buf good = {.len = 0}, bad;
     char why[128];
     CHECK(stbi_write_jpg_to_func(jpeg_append, &good, 3, 2, 3, image, 90) != 0);
@@ -273,7 +274,7 @@ static void test_jpeg_huffman(void)
     int rc = texture_decode((const unsigned char *)pgm16, sizeof pgm16 - 1, &t, why, sizeof why);
     expect(rc == -1 && strcmp(why, "PGM (P5) of more than 8 bits or malformed") == 0,
            "16-bit PGM: rc %d, %s", rc, why);
-    /* After EOI stb reads no more, nor does the check. */
+    /* After EOI the decoder reads no more. */
     bad = good;
     jpeg_append(&bad, (void *)late, (int)sizeof late);
     expect(decode_any(&bad, why) == 0, "DHT after EOI: %s", why);
