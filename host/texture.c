@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include <jpeglib.h>
+#include <png.h>
 #include <stb_image.h>
 
 /* Largest image file read (a larger one is refused: "File too large"):
@@ -232,28 +233,89 @@ static int texture_decode_jpeg(const unsigned char *data, size_t len,
     return 0;
 }
 
-/* ---- PNG chunk lengths ------------------------------------------------- */
+/* ---- PNG --------------------------------------------------------------- */
 
-/* stb_image 2.27 grows its buffer for an IDAT chunk to the length the
- * chunk claims before reading it: 94 bytes claiming 1.7 GB made it ask for
- * 2 GiB (found by tests/fuzz/fuzz_image.c). The whole file is in memory,
- * so a chunk (length, type, data, CRC) longer than what is left of it is
- * refused first; no valid PNG has one. */
-static bool png_chunks_fit(const unsigned char *d, size_t len)
+/* PNG goes to libpng (already tp2's PNG writer), not to stb_image: fuzzing
+ * stb_image 2.27 found it sizing its buffer by a chunk's claimed length
+ * before reading it (2 GiB for 94 bytes) and doing arithmetic on a null
+ * pointer for an empty first IDAT (tests/fuzz/fuzz_image.c); libpng checks
+ * lengths and CRCs and is fuzzed upstream. Errors jump back here. Like
+ * stb, it keeps 8 bits of 16 (the high byte), expands palettes and gray,
+ * drops alpha and applies no gamma. */
+struct png_source {
+    const unsigned char *data;
+    size_t len, at;
+    char message[128];
+};
+
+static void png_read_bytes(png_structp png, png_bytep out, size_t n)
 {
-    static const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-    if (len < 8 || memcmp(d, signature, 8) != 0)
-        return true; /* not a PNG */
-    for (size_t i = 8; i + 8 <= len;) {
-        uint32_t n = (uint32_t)d[i] << 24 | (uint32_t)d[i + 1] << 16 |
-                     (uint32_t)d[i + 2] << 8 | d[i + 3];
-        if (n > len - i - 8 || len - i - 8 - n < 4)
-            return false;
-        if (memcmp(d + i + 4, "IEND", 4) == 0)
-            break;
-        i += 12 + (size_t)n;
+    struct png_source *src = png_get_io_ptr(png);
+    if (n > src->len - src->at)
+        png_error(png, "file ends inside the image");
+    memcpy(out, src->data + src->at, n);
+    src->at += n;
+}
+
+static void png_fail(png_structp png, png_const_charp message)
+{
+    struct png_source *src = png_get_error_ptr(png);
+    snprintf(src->message, sizeof src->message, "%s", message);
+    png_longjmp(png, 1);
+}
+
+static void png_quiet(png_structp png, png_const_charp message)
+{
+    (void)png;
+    (void)message;
+}
+
+static int texture_decode_png(const unsigned char *data, size_t len,
+                              struct texture_image *out, char *why, size_t whysize)
+{
+    struct png_source src = {data, len, 0, "out of memory"};
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, png_fail, png_quiet);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    /* volatile: set after setjmp and read after a longjmp back to it */
+    unsigned char *volatile rgb = NULL;
+    png_bytep *volatile rows = NULL;
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        free(rgb);
+        free(rows);
+        if (why && whysize > 0)
+            snprintf(why, whysize, "cannot decode the PNG (%s)", src.message);
+        return -1;
     }
-    return true;
+    png_set_read_fn(png, &src, png_read_bytes);
+    png_read_info(png, info);
+    size_t w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    if (w * h > TEXTURE_MAX_TEXELS) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return why_said(why, whysize, "image too large (at most 32 Mi texels)");
+    }
+    png_set_strip_16(png);
+    png_set_palette_to_rgb(png);
+    png_set_expand_gray_1_2_4_to_8(png);
+    png_set_gray_to_rgb(png);
+    png_set_strip_alpha(png);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    if (png_get_rowbytes(png, info) != w * 3)
+        png_error(png, "unexpected row size");
+    rgb = malloc(w * h * 3);
+    rows = malloc(h * sizeof *rows);
+    if (!rgb || !rows)
+        png_error(png, "out of memory");
+    for (size_t y = 0; y < h; y++)
+        rows[y] = rgb + y * w * 3;
+    png_read_image(png, rows);
+    free(rows);
+    png_destroy_read_struct(&png, &info, NULL);
+    out->width = (int)w;
+    out->height = (int)h;
+    out->rgb = rgb;
+    return 0;
 }
 
 /* ---- any format -------------------------------------------------------- */
@@ -268,23 +330,18 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
      * bytes may precede the start marker); libjpeg-turbo gets all of it. */
     if (len >= 1 && data[0] == 0xFF)
         return texture_decode_jpeg(data, len, out, why, whysize);
-    if (!png_chunks_fit(data, len))
-        return why_said(why, whysize, "corrupt PNG (a chunk longer than the file)");
-    /* stb_image 2.27 reads a 16-bit PGM (P5, maxval above 255) past its
-     * buffer (found by tests/fuzz/fuzz_image.c): only 8-bit ones go to it.
-     * The header is read as stb reads it; one not read whole is refused. */
-    if (len >= 2 && data[0] == 'P' && data[1] == '5') {
-        struct ppm_cursor c = {data + 2, data + len};
-        long w = ppm_number(&c), h = ppm_number(&c), maxval = ppm_number(&c);
-        if (w < 0 || h < 0 || maxval < 0 || maxval > 255)
-            return why_said(why, whysize, "PGM (P5) of more than 8 bits or malformed");
-    }
+    static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (len >= 8 && memcmp(data, png_signature, 8) == 0)
+        return texture_decode_png(data, len, out, why, whysize);
+    /* stb_image decodes BMP here, and only BMP: its other decoders (GIF,
+     * PSD, TGA, PNM, ...) are no format of SPEC's, and its 2.27 has bugs
+     * fuzzing finds. */
+    if (len < 2 || data[0] != 'B' || data[1] != 'M')
+        return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
     int w = 0, h = 0, comp = 0;
     if (len > (size_t)0x7fffffff || !stbi_info_from_memory(data, (int)len, &w, &h, &comp))
         return why_said(why, whysize, "not a BMP, PNG, JPEG or PPM image");
-    /* stb_image 2.27 reads a PNM (P5) of 0 x 0 as an image; it has no
-     * texel to show (found by tests/fuzz/fuzz_image.c). The height of a
-     * top-down BMP comes negative here. */
+    /* The height of a top-down BMP comes negative here. */
     if (w == 0 || h == 0)
         return why_said(why, whysize, "image of no texels (a width or height of 0)");
     if ((size_t)abs(w) * (size_t)abs(h) > TEXTURE_MAX_TEXELS)

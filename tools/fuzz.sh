@@ -14,7 +14,12 @@
 # are listed; replay one with build-fuzz/tests/fuzz/fuzz_TARGET FILE, and
 # once fixed copy it into tests/fuzz/regressions/TARGET/), 2 on usage.
 # Environment: TP2_FUZZ_BUILD (build-fuzz), TP2_FUZZ_OUT (fuzz-out),
-# TP2_CORPUS_DIR (../shared/corpus), CC (clang).
+# TP2_CORPUS_DIR (../shared/corpus), CC (clang); TP2_FUZZ_RUNS=N and
+# TP2_FUZZ_SEED=S make a run reproducible (what CI does): each target
+# stops after N inputs (SECONDS stays a cap), its mutations drawn from
+# seed S, starting from the seeds alone (no kept corpus), so the same
+# build tries the same inputs everywhere and a run that passed here
+# passes in CI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -76,10 +81,17 @@ for t in "${targets[@]}"; do
             "$corpus_dir"/*.{ppm,bmp} "$corpus_dir"/textures/* "$corpus_dir"/dialects/*.ppm
         max_len=16384 ;;
     esac
-    echo "fuzz_$t: ${seconds} s, $(ls "$out/seeds/$t" | wc -l) seeds, log $out/$t.log"
+    limits=(-max_total_time="$seconds")
+    if [ -n "${TP2_FUZZ_RUNS:-}" ]; then
+        limits+=(-runs="$TP2_FUZZ_RUNS" -seed="${TP2_FUZZ_SEED:-1}")
+        rm -rf "$out/corpus/$t"
+        mkdir -p "$out/corpus/$t"
+    fi
+    echo "fuzz_$t: ${seconds} s${TP2_FUZZ_RUNS:+ or $TP2_FUZZ_RUNS inputs (seed ${TP2_FUZZ_SEED:-1})}," \
+        "$(ls "$out/seeds/$t" | wc -l) seeds, log $out/$t.log"
     # One job on one core; stdin closed so that nothing can wait on it.
     set +e
-    "$build/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -rss_limit_mb=2048 \
+    "$build/tests/fuzz/fuzz_$t" "${limits[@]}" -rss_limit_mb=2048 \
         -timeout=10 -max_len=$max_len -dict="tests/fuzz/$t.dict" \
         -artifact_prefix="$out/findings/$t/" -print_final_stats=1 \
         "$out/corpus/$t" "$out/seeds/$t" </dev/null >"$out/$t.log" 2>&1
