@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "decimal.h"
 #include "lexer.h"
 #include "vec3.h"
 
@@ -95,7 +96,7 @@ static int number(struct obj_reader *r, char **s, double *v)
 {
     char *p = skip(*s), *end = NULL;
     char found[LEXER_QUOTE_SIZE];
-    *v = strtod(p, &end);
+    *v = decimal_read(p, &end);
     if (end == p || (*end && !is_blank(*end)) || !isfinite(*v)) {
         describe(p, found, sizeof found);
         return fail(r, (size_t)(p - r->line) + 1, "expected a finite number, found %s", found);
