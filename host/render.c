@@ -209,15 +209,13 @@ static size_t spirv_size(bool use_double, bool curved)
                       : (curved ? sizeof tp2_trace_float_curved : sizeof tp2_trace_float);
 }
 
-/* How the shader reads binding i (tp2_shared.h): the frame as a uniform
- * block, objects and BVH nodes as texels, the rest as storage buffers. */
+/* How the shader reads binding i (tp2_shared.h): objects and BVH nodes
+ * as texels, the rest as storage buffers. */
 static VkDescriptorType binding_type(uint32_t i)
 {
-    if (i == TP2_BINDING_FRAME)
-        return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    if (i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH)
-        return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH
+               ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 /* The descriptor set layout, the pipeline layout and the shader module of
@@ -301,18 +299,16 @@ static int need_pipeline(struct renderer *r, int walk)
 
 static int create_descriptors(struct renderer *r)
 {
-    VkDescriptorPoolSize sizes[3] = {
+    VkDescriptorPoolSize sizes[2] = {
         {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
         {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-        {.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
     };
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
-        for (int k = 0; k < 3; k++)
-            sizes[k].descriptorCount += binding_type(i) == sizes[k].type;
+        sizes[binding_type(i) == sizes[1].type].descriptorCount++;
     VkDescriptorPoolCreateInfo pool_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .maxSets = 1,
-        .poolSizeCount = 3,
+        .poolSizeCount = 2,
         .pPoolSizes = sizes,
     };
     TP2_VK_TRY(vkCreateDescriptorPool(r->vk.device, &pool_info, NULL, &r->pool));
@@ -337,7 +333,7 @@ static int create_descriptors(struct renderer *r)
             .descriptorCount = 1,
             .descriptorType = binding_type(i),
         };
-        if (binding_type(i) != VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
+        if (binding_type(i) == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
             writes[i].pBufferInfo = &infos[i];
             continue;
         }

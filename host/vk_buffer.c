@@ -12,10 +12,9 @@ int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
     VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
-        /* Uniform and texel: the frame is a uniform block, objects and BVH
-         * nodes are read through texel views (render.c binding_type). */
+        /* Texel: objects and BVH nodes are read through texel views. */
         .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                 VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                 VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
     TP2_VK_TRY(vkCreateBuffer(c->device, &info, NULL, &b->buffer));

@@ -49,8 +49,7 @@ struct BvhNode {
     ivec2 link;
 };
 
-// The frame: a uniform block (std140 is std430 for its vec4 members).
-layout(std140, set = 0, binding = TP2_BINDING_FRAME) uniform FrameBuf { Frame frame; };
+layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };
 layout(std430, set = 0, binding = TP2_BINDING_LIGHTS) readonly buffer LightBuf { Light lights[]; };
 layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentBuf { Pigment pigments[]; };
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };

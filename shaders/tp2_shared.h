@@ -5,10 +5,9 @@
 #ifndef TP2_SHARED_H
 #define TP2_SHARED_H
 
-/* Descriptor bindings, all in set 0, all storage buffers but the frame (a
- * uniform block: lavapipe loads it once for all lanes) and the objects and
- * the BVH, which are texel buffers (below). The scene's inputs come first,
- * the image and the stats after them. */
+/* Descriptor bindings, all in set 0, all storage buffers but the objects
+ * and the BVH, which are texel buffers (below). The scene's inputs come
+ * first, the image and the stats after them. */
 #define TP2_BINDING_FRAME 0
 #define TP2_BINDING_LIGHTS 1
 #define TP2_BINDING_PIGMENTS 2

@@ -6,8 +6,7 @@
  * TP2_BINDING_* and its DescriptorSet 0, the runtime array's ArrayStride
  * equals sizeof the C struct, and each member of the GLSL struct has the
  * C field's name, offset, size and scalar type, with as many members as the
- * C table has fields (the frame is a uniform block, std140, which for its
- * vec4-only members is std430's layout). The objects and the BVH nodes are texel buffers
+ * C table has fields. The objects and the BVH nodes are texel buffers
  * (usamplerBuffer: checked by name, binding and image type; their texel
  * layout is pinned by asserts in gpu_layout.h and bvh.h). The bindings of
  * storage and texel buffers together must be exactly
@@ -62,7 +61,6 @@ enum {
     DEC_DESCRIPTOR_SET = 34,
     DEC_OFFSET = 35,
     SC_UNIFORM_CONSTANT = 0,
-    SC_UNIFORM = 2,
     SC_STORAGE_BUFFER = 12,
     DIM_BUFFER = 5,
     SPV_MAGIC = 0x07230203,
@@ -211,7 +209,7 @@ static long spv_member_decoration(const struct spv *m, uint32_t id, uint32_t k,
     return -1;
 }
 
-/* The storage-buffer (or uniform-block) variable whose block type is named block, through
+/* The storage-buffer variable whose block type is named block, through
  * its pointer type; 0 if none. *count gets how many there are. */
 static uint32_t spv_find_buffer(const struct spv *m, const char *block,
                                 uint32_t *block_type, int *count)
@@ -219,8 +217,7 @@ static uint32_t spv_find_buffer(const struct spv *m, const char *block,
     uint32_t found = 0;
     *count = 0;
     SPV_FOR(m, i, op, wc) {
-        if (op != OP_VARIABLE || wc < 4 ||
-            (m->w[i + 3] != SC_STORAGE_BUFFER && m->w[i + 3] != SC_UNIFORM))
+        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != SC_STORAGE_BUFFER)
             continue;
         size_t ptr = spv_def(m, m->w[i + 1]);
         if (spv_op(m, ptr) != OP_TYPE_POINTER || spv_wc(m, ptr) < 4)
@@ -547,8 +544,7 @@ static void check_binding_set(const struct spv *m)
     int stray = 0;
     SPV_FOR(m, i, op, wc) {
         if (op != OP_VARIABLE || wc < 4 ||
-            (m->w[i + 3] != SC_STORAGE_BUFFER && m->w[i + 3] != SC_UNIFORM &&
-             m->w[i + 3] != SC_UNIFORM_CONSTANT))
+            (m->w[i + 3] != SC_STORAGE_BUFFER && m->w[i + 3] != SC_UNIFORM_CONSTANT))
             continue;
         long b = spv_decoration(m, m->w[i + 2], DEC_BINDING);
         if (b >= 0 && b < TP2_BINDING_COUNT)
