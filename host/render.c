@@ -91,6 +91,19 @@ struct tile_push {
     int32_t accept_cut;
 };
 
+/* limit, or the environment variable name's value where it is a smaller
+ * unsigned number: tests lower device limits this way to reach them with
+ * small scenes and images. */
+static VkDeviceSize lowered_by_env(const char *name, VkDeviceSize limit)
+{
+    const char *env = getenv(name);
+    char *end;
+    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
+    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < limit)
+        return v;
+    return limit;
+}
+
 /* The band buffer's byte limit on this device: TP2_BAND_BYTES, or less
  * where the device's storage-buffer range is smaller. The environment
  * variable TP2_BAND_BYTES may lower it, so that tests can render small
@@ -100,12 +113,7 @@ static VkDeviceSize band_bytes_max(const struct vkc *vk)
 {
     VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
     VkDeviceSize max = range < TP2_BAND_BYTES ? range : TP2_BAND_BYTES;
-    const char *env = getenv("TP2_BAND_BYTES");
-    char *end;
-    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
-    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < max)
-        max = v;
-    return max;
+    return lowered_by_env("TP2_BAND_BYTES", max);
 }
 
 /* The scene's buffers, filled; the band buffer (band_size bytes), its host
@@ -648,12 +656,7 @@ static int check_band_fits(const struct vkc *vk, int width)
 static VkDeviceSize storage_range(const struct vkc *vk)
 {
     VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
-    const char *env = getenv("TP2_STORAGE_RANGE");
-    char *end;
-    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
-    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < range)
-        range = v;
-    return range;
+    return lowered_by_env("TP2_STORAGE_RANGE", range);
 }
 
 /* The device's texel-buffer limit, in texels; TP2_TEXEL_ELEMENTS may lower
@@ -661,12 +664,7 @@ static VkDeviceSize storage_range(const struct vkc *vk)
 static VkDeviceSize texel_elements(const struct vkc *vk)
 {
     VkDeviceSize max = vk->props.limits.maxTexelBufferElements;
-    const char *env = getenv("TP2_TEXEL_ELEMENTS");
-    char *end;
-    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
-    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < max)
-        max = v;
-    return max;
+    return lowered_by_env("TP2_TEXEL_ELEMENTS", max);
 }
 
 /* Every scene buffer must fit its binding (a storage buffer's range, a
