@@ -100,13 +100,14 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
                                v ? v : "nothing");
     } else if (strcmp(opt, "--precision") == 0) {
         v = option_value(argc, argv, i);
-        c->precision_given = true;
-        if (v && strcmp(v, "double") == 0)
-            c->use_double = true;
+        if (v && strcmp(v, "auto") == 0)
+            c->precision = PRECISION_AUTO;
         else if (v && strcmp(v, "float") == 0)
-            c->use_double = false;
+            c->precision = PRECISION_FLOAT;
+        else if (v && strcmp(v, "double") == 0)
+            c->precision = PRECISION_DOUBLE;
         else
-            return usage_error("--precision needs 'float' or 'double', found '%s'",
+            return usage_error("--precision needs 'auto', 'float' or 'double', found '%s'",
                                v ? v : "nothing");
     } else {
         return usage_error("unknown option '%s'", opt);
@@ -139,7 +140,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
         }
     }
     if (c->bailout < 0) /* the reference image prunes nothing */
-        c->bailout = c->use_double ? 0.0 : TP2_DEFAULT_BAILOUT;
+        c->bailout = c->precision == PRECISION_DOUBLE ? 0.0 : TP2_DEFAULT_BAILOUT;
     if (c->help || c->version || c->list_devices)
         return 0;
     if (c->dump_scene) {

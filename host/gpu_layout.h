@@ -30,6 +30,7 @@
 struct gpu_walk {
     _Alignas(16) int32_t where[4]; /* pixel x, y; rays parked (-1: done); rays traced */
     _Alignas(16) float color[4];   /* rgb so far, pruning budget left */
+    uint32_t signature;            /* the decisions so far (signature.glsl) */
 };
 
 #define TP2_LAYOUT(type, field, offset) \
@@ -119,14 +120,17 @@ TP2_TEXEL_LAYOUT(gpu_object_d, TP2_ROW_TEXELS_D, TP2_OBJECT_TEXELS_D);
 TP2_LAYOUT(gpu_walk_ray_f, origin, 0);
 TP2_LAYOUT(gpu_walk_ray_f, dir, 16);
 TP2_LAYOUT(gpu_walk_ray_f, info, 32);
-TP2_SIZE(gpu_walk_ray_f, 48);
+TP2_LAYOUT(gpu_walk_ray_f, doubt, 48);
+TP2_SIZE(gpu_walk_ray_f, 64);
 TP2_LAYOUT(gpu_walk_ray_d, origin, 0);
 TP2_LAYOUT(gpu_walk_ray_d, dir, 32);
 TP2_LAYOUT(gpu_walk_ray_d, info, 64);
+TP2_LAYOUT(gpu_walk_ray_d, doubt, 80);
 TP2_SIZE(gpu_walk_ray_d, 96);
 TP2_LAYOUT(gpu_walk, where, 0);
 TP2_LAYOUT(gpu_walk, color, 16);
-TP2_SIZE(gpu_walk, 32);
+TP2_LAYOUT(gpu_walk, signature, 32);
+TP2_SIZE(gpu_walk, 48);
 
 #undef TP2_LAYOUT
 #undef TP2_SIZE

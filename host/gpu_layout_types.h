@@ -58,6 +58,7 @@ struct TP2_T(gpu_walk_ray) { /* a saved walk's ray (layout.glsl, WalkRay) */
     TP2_RVEC4(origin); /* xyz, weight */
     TP2_RVEC4(dir);    /* xyz */
     TP2_IVEC4(info);   /* start object, start inward, depth */
+    TP2_VEC4(doubt);   /* xyz: its rounding's bound (signature.glsl) */
 };
 
 #undef TP2_RVEC4

@@ -40,15 +40,17 @@ struct range_note {
     char what[192];
 };
 
-/* Precision for s (scene_length_limit has the rule): double where float
+/* Precision for s (scene_length_limit has the rule): as asked, auto
+ * meaning float with a double retrace (*retrace); double where float
  * cannot carry its lengths and --precision float was not asked for, in
  * which case *note is filled; refused (one message, -1) when the lengths
  * are past even double's bound, or past float's under --precision float. */
 static int choose_precision(const struct cli *c, const struct scene *s, bool *use_double,
-                            struct range_note *note, bool *noted)
+                            bool *retrace, struct range_note *note, bool *noted)
 {
     double fmax_len = scene_length_limit(false), dmax_len = scene_length_limit(true);
-    *use_double = c->use_double;
+    *use_double = c->precision == PRECISION_DOUBLE;
+    *retrace = c->precision == PRECISION_AUTO;
     *noted = false;
     if (s->max_length <= fmax_len)
         return 0;
@@ -62,18 +64,19 @@ static int choose_precision(const struct cli *c, const struct scene *s, bool *us
                 note->where, s->max_length, s->max_length_what, dmax_len);
         return -1;
     }
-    if (!c->use_double && c->precision_given) {
+    if (c->precision == PRECISION_FLOAT) {
         fprintf(stderr, "%s: error: a coordinate or size of %.3g (%s) is beyond float "
                         "precision's range (lengths up to %.3g); leave out --precision "
                         "float to render it in double\n",
                 note->where, s->max_length, s->max_length_what, fmax_len);
         return -1;
     }
-    if (!c->use_double) {
+    if (c->precision == PRECISION_AUTO) {
         snprintf(note->what, sizeof note->what, "a coordinate or size of %.3g (%s) is beyond "
                  "float precision's range (lengths up to %.3g)", s->max_length,
                  s->max_length_what, fmax_len);
         *use_double = true;
+        *retrace = false;
         *noted = true;
     }
     return 0;
@@ -81,13 +84,13 @@ static int choose_precision(const struct cli *c, const struct scene *s, bool *us
 
 /* --stats: where the time went and how many rays it bought. */
 static void print_stats(const struct render_stats *st, double parse, double write,
-                        bool use_double)
+                        int width, int height)
 {
     static const char *kinds[TP2_STAT_COUNT] = {"camera", "shadow", "reflected",
                                                 "transmitted"};
     uint64_t total = 0;
     fprintf(stderr, "tp2: device     %s\n", st->device_name);
-    fprintf(stderr, "tp2: precision  %s\n", use_double ? "double" : "float");
+    fprintf(stderr, "tp2: precision  %s\n", st->precision);
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh "
                     "and upload)\n", st->device);
@@ -97,6 +100,10 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);
+    if (st->retracing)
+        fprintf(stderr, "tp2: retrace    %8.3f s (%llu pixels, %.2f%%, again in double; in "
+                        "render)\n", st->retrace, (unsigned long long)st->retraced,
+                100.0 * (double)st->retraced / ((double)width * height));
     fprintf(stderr, "tp2: passes     %8u (walks of at most %d rays each)\n", st->passes,
             st->pass_rays);
     fprintf(stderr, "tp2: readback   %8.3f s (copying finished bands from the device)\n",
@@ -123,12 +130,12 @@ static int write_rows(void *writer, const float *rgba, int first, int count)
 static int render_to_file(const struct cli *c, const struct scene *s, double parse_time)
 {
     struct range_note *note = malloc(sizeof *note);
-    bool use_double, noted;
+    bool use_double, retrace, noted;
     if (!note) {
         fputs("tp2: out of memory\n", stderr);
         return EXIT_FAILURE;
     }
-    if (choose_precision(c, s, &use_double, note, &noted) != 0) {
+    if (choose_precision(c, s, &use_double, &retrace, note, &noted) != 0) {
         free(note);
         return EXIT_FAILURE;
     }
@@ -138,6 +145,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
         .bvh_min = c->bvh_min,
         .bailout = c->bailout,
         .use_double = use_double,
+        .retrace = retrace,
         .double_where = noted ? note->where : NULL,
         .double_what = noted ? note->what : NULL,
         .validate = c->validate,
@@ -168,7 +176,8 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
     if (image_writer_finish(w) != 0)
         return EXIT_FAILURE;
     if (c->stats)
-        print_stats(&stats, parse_time, stats.write + clock_seconds() - t0, use_double);
+        print_stats(&stats, parse_time, stats.write + clock_seconds() - t0, opt.width,
+                    opt.height);
     return EXIT_SUCCESS;
 }
 

@@ -11,6 +11,7 @@
 #include "gpu_layout.h"
 #include "pipeline_cache.h"
 #include "progress.h"
+#include "retrace.h"
 #include "scene_pack.h"
 #include "tp2_shared.h"
 #include "trace_double_curved_spv.h"
@@ -51,28 +52,40 @@
  * as many, and later passes keep the smaller number. */
 #define TP2_CPU_PASS_RAYS 256
 
+/* One kind of pass: its shader, its pipelines and the descriptor set they
+ * read. The band pass traces every pixel of a band, in the precision
+ * chosen (under --precision auto in float, recording signatures); the
+ * retrace pass, under auto only, traces the listed pixels in double. */
+struct tracer {
+    bool use_double, signatures, pixel_list;
+    VkShaderModule shader;
+    VkPipeline pipelines[TP2_WALK_KINDS]; /* by TP2_WALK_*, made when needed */
+    VkDescriptorSet set;
+    VkBufferView views[TP2_BINDING_COUNT]; /* its texel buffers' */
+    bool walking;  /* a whole-tree pass was cut: walks go in passes */
+    int pass_rays; /* rays a walk traces per pass */
+};
+
 struct renderer {
     struct vkc vk;
     struct vk_buffer buffers[TP2_BINDING_COUNT];
+    struct vk_buffer twin[TP2_INPUT_BUFFERS]; /* the retrace pass's double scene */
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
-    VkShaderModule shader;
     VkPipelineCache cache;
-    VkPipeline pipelines[TP2_WALK_KINDS]; /* by TP2_WALK_*, made when needed */
+    struct tracer band, retrace;
+    bool retracing; /* --precision auto where the device has shaderFloat64 */
     struct scene_features features;
     bool count_rays;
-    bool walking;         /* a whole-tree pass was cut: walks go in passes */
     double pipeline_time; /* seconds spent making pipelines */
     VkDescriptorPool pool;
-    VkBufferView views[TP2_BINDING_COUNT]; /* the texel buffers' */
-    VkDescriptorSet set;
     VkCommandPool command_pool;
     VkCommandBuffer cmd;
     VkFence fence;
     int band_rows;    /* rows per band; the band buffer holds this many */
     float *host_band; /* the last finished band, copied out for the writer */
+    uint32_t *last_signatures; /* the previous band's last row's (retracing) */
     bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
-    int pass_rays;    /* rays a walk traces per pass */
     int walk_capacity;
 };
 
@@ -81,14 +94,16 @@ struct renderer {
 #define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + TP2_COUNTER_COUNT)
 #define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
-/* What one dispatch covers (layout.glsl's Tile): a band of rows, one
- * sample per pixel, one pass of their walks. */
+/* What one dispatch covers (layout.glsl's Tile): a band of rows (or the
+ * listed pixels of it), one sample per pixel, one pass of their walks. */
 struct tile_push {
     int32_t origin[2];
     int32_t sample;
     int32_t pass_rays;
     int32_t walk_capacity;
     int32_t accept_cut;
+    int32_t rows;
+    int32_t list_length;
 };
 
 /* limit, or the environment variable name's value where it is a smaller
@@ -116,31 +131,60 @@ static VkDeviceSize band_bytes_max(const struct vkc *vk)
     return lowered_by_env("TP2_BAND_BYTES", max);
 }
 
-/* The scene's buffers, filled; the band buffer (band_size bytes), its host
- * copy, the stats buffer, and the walks' buffers (on CPU devices; one
- * element elsewhere, where walks finish in their first pass). */
-static int create_buffers(struct renderer *r, const struct packed_scene *p,
-                          VkDeviceSize band_size, bool use_double)
+/* The input bindings whose layout depends on the precision (layout.glsl's
+ * rvec4s): there the retrace pass reads the double scene's buffers. */
+static bool by_precision(int binding)
 {
-    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
-        if (vk_buffer_create(&r->vk, p->size[i], false, &r->buffers[i]) != 0)
+    return binding == TP2_BINDING_FRAME || binding == TP2_BINDING_LIGHTS ||
+           binding == TP2_BINDING_PIGMENTS || binding == TP2_BINDING_OBJECTS ||
+           binding == TP2_BINDING_EXTRA;
+}
+
+/* A device buffer holding input buffer i of p. */
+static int upload(const struct renderer *r, const struct packed_scene *p, int i,
+                  struct vk_buffer *b)
+{
+    if (vk_buffer_create(&r->vk, p->size[i], false, b) != 0)
+        return -1;
+    memcpy(b->mapped, p->data[i], p->size[i]);
+    return 0;
+}
+
+/* The scene's buffers, filled (and the double scene's, when retracing);
+ * the band buffer (band_rows rows of width), its host copy, the stats
+ * buffer, the walks' buffers (on CPU devices; one element elsewhere, where
+ * walks finish in their first pass), and when retracing the signatures
+ * (of the band and the row after it) and the pixel list. */
+static int create_buffers(struct renderer *r, const struct packed_scene *p,
+                          const struct packed_scene *twin, int width)
+{
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
+        if (upload(r, p, i, &r->buffers[i]) != 0 ||
+            (r->retracing && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
             return -1;
-        memcpy(r->buffers[i].mapped, p->data[i], p->size[i]);
-    }
-    VkDeviceSize pixels = band_size / TP2_PIXEL_BYTES;
+    VkDeviceSize pixels = (VkDeviceSize)r->band_rows * width;
     VkDeviceSize walks = (VkDeviceSize)r->walk_capacity;
-    VkDeviceSize ray = use_double ? sizeof(struct gpu_walk_ray_d) : sizeof(struct gpu_walk_ray_f);
-    if (vk_buffer_create(&r->vk, band_size, true, &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
+    VkDeviceSize ray = r->band.use_double || r->retracing ? sizeof(struct gpu_walk_ray_d)
+                                                         : sizeof(struct gpu_walk_ray_f);
+    VkDeviceSize words = sizeof(uint32_t);
+    if (vk_buffer_create(&r->vk, pixels * TP2_PIXEL_BYTES, true,
+                         &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
         vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0 ||
-        vk_buffer_create(&r->vk, (r->loop_guard ? pixels : 1) * sizeof(uint32_t), false,
+        vk_buffer_create(&r->vk, (r->loop_guard ? pixels + width : 1) * words, false,
                          &r->buffers[TP2_BINDING_STARTED]) != 0 ||
         vk_buffer_create(&r->vk, walks * sizeof(struct gpu_walk), false,
                          &r->buffers[TP2_BINDING_WALKS]) != 0 ||
         vk_buffer_create(&r->vk, walks * TP2_WALK_RAYS * ray, false,
-                         &r->buffers[TP2_BINDING_WALK_RAYS]) != 0)
+                         &r->buffers[TP2_BINDING_WALK_RAYS]) != 0 ||
+        vk_buffer_create(&r->vk, (r->retracing ? pixels + width : 1) * words, true,
+                         &r->buffers[TP2_BINDING_SIGNATURES]) != 0 ||
+        vk_buffer_create(&r->vk, (r->retracing ? pixels : 1) * words, false,
+                         &r->buffers[TP2_BINDING_PIXEL_LIST]) != 0)
         return -1;
     memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
-    if (!(r->host_band = malloc((size_t)band_size))) {
+    r->host_band = malloc((size_t)(pixels * TP2_PIXEL_BYTES));
+    r->last_signatures = r->retracing ? malloc((size_t)width * sizeof(uint32_t)) : NULL;
+    if (!r->host_band || (r->retracing && !r->last_signatures)) {
         fputs("tp2: out of memory for a band of the image\n", stderr);
         return -1;
     }
@@ -169,11 +213,13 @@ static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
  * (VkBool32) and ints are all 32-bit words. */
-static void spec_values(const struct scene_features *f, bool count_rays,
-                        bool loop_guard, int walk, int32_t v[TP2_SPEC_COUNT],
+static void spec_values(const struct scene_features *f, const struct tracer *t,
+                        bool count_rays, bool loop_guard, int walk, int32_t v[TP2_SPEC_COUNT],
                         VkSpecializationMapEntry map[TP2_SPEC_COUNT])
 {
     v[TP2_SPEC_WALK] = walk;
+    v[TP2_SPEC_SIGNATURES] = t->signatures;
+    v[TP2_SPEC_PIXEL_LIST] = t->pixel_list;
     v[TP2_SPEC_REFLECT] = f->reflect;
     v[TP2_SPEC_REFRACT] = f->refract;
     v[TP2_SPEC_PIGMENTS] = f->pigments;
@@ -226,9 +272,17 @@ static VkDescriptorType binding_type(uint32_t i)
                : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
-/* The descriptor set layout, the pipeline layout and the shader module of
- * the precision and kinds the scene needs. */
-static int create_layouts(struct renderer *r, bool use_double)
+/* The passes in use, in passes; returns how many. */
+static int tracers(struct renderer *r, struct tracer *passes[2])
+{
+    passes[0] = &r->band;
+    passes[1] = &r->retrace;
+    return r->retracing ? 2 : 1;
+}
+
+/* The descriptor set layout, the pipeline layout, and each pass's shader
+ * module of its precision and the kinds the scene needs. */
+static int create_layouts(struct renderer *r)
 {
     VkDescriptorSetLayoutBinding bindings[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
@@ -259,25 +313,29 @@ static int create_layouts(struct renderer *r, bool use_double)
     TP2_VK_TRY(vkCreatePipelineLayout(r->vk.device, &layout_info, NULL,
                                       &r->pipeline_layout));
     bool curved = curved_kinds(&r->features);
-    VkShaderModuleCreateInfo module_info = {
-        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = spirv_size(use_double, curved),
-        .pCode = spirv_code(use_double, curved),
-    };
-    TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->shader));
+    struct tracer *passes[2];
+    for (int k = 0, n = tracers(r, passes); k < n; k++) {
+        struct tracer *t = passes[k];
+        VkShaderModuleCreateInfo module_info = {
+            .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+            .codeSize = spirv_size(t->use_double, curved),
+            .pCode = spirv_code(t->use_double, curved),
+        };
+        TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &t->shader));
+    }
     return 0;
 }
 
-/* The pipeline for walks of kind `walk` (TP2_WALK_*), made when first
- * needed: most scenes only ever need TP2_WALK_WHOLE. */
-static int need_pipeline(struct renderer *r, int walk)
+/* Pass t's pipeline for walks of kind `walk` (TP2_WALK_*), made when
+ * first needed: most scenes only ever need TP2_WALK_WHOLE. */
+static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
 {
-    if (r->pipelines[walk])
+    if (t->pipelines[walk])
         return 0;
     double t0 = clock_seconds();
     int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(&r->features, r->count_rays, r->loop_guard, walk, values, map);
+    spec_values(&r->features, t, r->count_rays, r->loop_guard, walk, values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
@@ -289,7 +347,7 @@ static int need_pipeline(struct renderer *r, int walk)
         .stage = {
             .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
             .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-            .module = r->shader,
+            .module = t->shader,
             .pName = "main",
             .pSpecializationInfo = &spec,
         },
@@ -298,45 +356,36 @@ static int need_pipeline(struct renderer *r, int walk)
     if (pipeline_cache_load(&r->vk, &r->cache) != 0)
         return -1;
     TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, r->cache, 1, &info, NULL,
-                                        &r->pipelines[walk]));
+                                        &t->pipelines[walk]));
     pipeline_cache_save(&r->vk, r->cache);
     r->cache = VK_NULL_HANDLE;
     r->pipeline_time += clock_seconds() - t0;
     return 0;
 }
 
-static int create_descriptors(struct renderer *r)
+/* Pass t's descriptor set: every binding the band pass's buffer, but where
+ * the retrace pass reads the double scene's (by_precision). */
+static int write_descriptors(struct renderer *r, struct tracer *t)
 {
-    VkDescriptorPoolSize sizes[2] = {
-        {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
-    };
-    for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
-        sizes[binding_type(i) == sizes[1].type].descriptorCount++;
-    VkDescriptorPoolCreateInfo pool_info = {
-        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-        .maxSets = 1,
-        .poolSizeCount = 2,
-        .pPoolSizes = sizes,
-    };
-    TP2_VK_TRY(vkCreateDescriptorPool(r->vk.device, &pool_info, NULL, &r->pool));
     VkDescriptorSetAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
         .descriptorPool = r->pool,
         .descriptorSetCount = 1,
         .pSetLayouts = &r->set_layout,
     };
-    TP2_VK_TRY(vkAllocateDescriptorSets(r->vk.device, &alloc, &r->set));
+    TP2_VK_TRY(vkAllocateDescriptorSets(r->vk.device, &alloc, &t->set));
     VkDescriptorBufferInfo infos[TP2_BINDING_COUNT];
     VkWriteDescriptorSet writes[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++) {
+        bool twin = t == &r->retrace && by_precision((int)i);
+        VkBuffer buffer = twin ? r->twin[i].buffer : r->buffers[i].buffer;
         infos[i] = (VkDescriptorBufferInfo){
-            .buffer = r->buffers[i].buffer,
+            .buffer = buffer,
             .range = VK_WHOLE_SIZE,
         };
         writes[i] = (VkWriteDescriptorSet){
             .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
-            .dstSet = r->set,
+            .dstSet = t->set,
             .dstBinding = i,
             .descriptorCount = 1,
             .descriptorType = binding_type(i),
@@ -347,14 +396,38 @@ static int create_descriptors(struct renderer *r)
         }
         VkBufferViewCreateInfo view_info = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
-            .buffer = r->buffers[i].buffer,
+            .buffer = buffer,
             .format = VK_FORMAT_R32G32B32A32_UINT, /* bits, reinterpreted in GLSL */
             .range = VK_WHOLE_SIZE,
         };
-        TP2_VK_TRY(vkCreateBufferView(r->vk.device, &view_info, NULL, &r->views[i]));
-        writes[i].pTexelBufferView = &r->views[i];
+        TP2_VK_TRY(vkCreateBufferView(r->vk.device, &view_info, NULL, &t->views[i]));
+        writes[i].pTexelBufferView = &t->views[i];
     }
     vkUpdateDescriptorSets(r->vk.device, TP2_BINDING_COUNT, writes, 0, NULL);
+    return 0;
+}
+
+/* A descriptor set per pass. */
+static int create_descriptors(struct renderer *r)
+{
+    struct tracer *passes[2];
+    int n = tracers(r, passes);
+    VkDescriptorPoolSize sizes[2] = {
+        {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER},
+    };
+    for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++)
+        sizes[binding_type(i) == sizes[1].type].descriptorCount += (uint32_t)n;
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = (uint32_t)n,
+        .poolSizeCount = 2,
+        .pPoolSizes = sizes,
+    };
+    TP2_VK_TRY(vkCreateDescriptorPool(r->vk.device, &pool_info, NULL, &r->pool));
+    for (int k = 0; k < n; k++)
+        if (write_descriptors(r, passes[k]) != 0)
+            return -1;
     return 0;
 }
 
@@ -379,16 +452,25 @@ static int create_commands(struct renderer *r)
     return 0;
 }
 
-/* Records and submits one pass (TP2_WALK_*) of sample `sample`'s walks
- * over the band of rows [y, y + rows): a whole-tree or start dispatch
- * covers the band, a continue one the `walks` saved walks. `clear`: the
- * sample's first pass, which clears the band's started flags first. */
-static int submit_pass(struct renderer *r, int width, int y, int rows, int sample, int kind,
-                       uint32_t walks, bool clear)
+/* What one pass of t covers: sample `sample` of the band of rows [y, y +
+ * rows), and of the first `listed` pixels in the pixel list if t traces a
+ * list. */
+struct pass_area {
+    int width, y, rows, sample;
+    uint32_t listed;
+};
+
+/* Records and submits one pass of t (TP2_WALK_*) of the area's walks: a
+ * whole-tree or start dispatch covers the band (and the row after it,
+ * for its signatures) or the listed pixels, a continue one the `walks`
+ * saved walks. `clear`: the sample's first pass, which clears the band's
+ * started flags first. */
+static int submit_pass(struct renderer *r, struct tracer *t, const struct pass_area *a,
+                       int kind, uint32_t walks, bool clear)
 {
-    struct tile_push push = {{0, y}, sample, r->pass_rays, r->walk_capacity,
-                             r->pass_rays == 1};
-    if (need_pipeline(r, kind) != 0)
+    struct tile_push push = {{0, a->y}, a->sample, t->pass_rays, r->walk_capacity,
+                             t->pass_rays == 1, a->rows, (int32_t)a->listed};
+    if (need_pipeline(r, t, kind) != 0)
         return -1;
     VkCommandBufferBeginInfo begin = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
@@ -407,17 +489,20 @@ static int submit_pass(struct renderer *r, int width, int y, int rows, int sampl
                              VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &cleared, 0, NULL,
                              0, NULL);
     }
-    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipelines[kind]);
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, t->pipelines[kind]);
     vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                            r->pipeline_layout, 0, 1, &r->set, 0, NULL);
+                            r->pipeline_layout, 0, 1, &t->set, 0, NULL);
     vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT,
                        0, sizeof push, &push);
     uint32_t group = TP2_GROUP_X * TP2_GROUP_Y;
-    if (kind != TP2_WALK_CONTINUE)
-        vkCmdDispatch(r->cmd, (uint32_t)(width + TP2_GROUP_X - 1) / TP2_GROUP_X,
-                      (uint32_t)(rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
-    else
+    uint32_t rows = (uint32_t)(a->rows + t->signatures);
+    if (kind == TP2_WALK_CONTINUE)
         vkCmdDispatch(r->cmd, (walks + group - 1) / group, 1, 1);
+    else if (t->pixel_list)
+        vkCmdDispatch(r->cmd, (a->listed + group - 1) / group, 1, 1);
+    else
+        vkCmdDispatch(r->cmd, (uint32_t)(a->width + TP2_GROUP_X - 1) / TP2_GROUP_X,
+                      (rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
     /* Make the shader's writes visible to the next pass, which adds to the
      * pixels, goes on with the walks and clears the started flags, and to
      * the host's reads after the fence. */
@@ -499,16 +584,16 @@ struct writing {
     double *time;
 };
 
-/* Runs sample `sample` of the band [y, y + rows) to the end: every pixel's
- * walk starts in a first pass; on a CPU device those that did not finish
- * go on in further passes, and a pass that lavapipe cut short runs again
- * with half the rays per walk (TP2_CANARY_STEPS). While the first pass
- * renders, the host writes (w). *passes counts the passes. */
-static int render_band_sample(struct renderer *r, int width, int y, int rows, int sample,
+/* Runs pass t over area a to the end: every pixel's walk starts in a
+ * first pass; on a CPU device those that did not finish go on in further
+ * passes, and a pass that lavapipe cut short runs again with half the rays
+ * per walk (TP2_CANARY_STEPS). While the first pass renders, the host
+ * writes (w, if not NULL). *passes counts the passes. */
+static int render_band_sample(struct renderer *r, struct tracer *t, const struct pass_area *a,
                               const struct writing *w, uint32_t *passes)
 {
     uint32_t *count = (uint32_t *)r->buffers[TP2_BINDING_STATS].mapped + 2 * TP2_STAT_COUNT;
-    int kind = r->walking ? TP2_WALK_START : TP2_WALK_WHOLE;
+    int kind = t->walking ? TP2_WALK_START : TP2_WALK_WHOLE;
     bool first = true;
     bool waiting = false; /* walks found no room: their pixels start again */
     count[TP2_COUNTER_WALKS] = 0;
@@ -517,8 +602,8 @@ static int render_band_sample(struct renderer *r, int width, int y, int rows, in
         uint32_t walks = count[TP2_COUNTER_WALKS];
         if (walks > (uint32_t)r->walk_capacity)
             walks = (uint32_t)r->walk_capacity;
-        if (submit_pass(r, width, y, rows, sample, kind, walks, first) != 0 ||
-            (first && hand_on(r, w->held, w->upto, w->width, w->on_rows, w->user, w->time) != 0) ||
+        if (submit_pass(r, t, a, kind, walks, first) != 0 ||
+            (first && w && hand_on(r, w->held, w->upto, w->width, w->on_rows, w->user, w->time) != 0) ||
             wait_pass(r) != 0)
             return -1;
         first = false;
@@ -526,12 +611,12 @@ static int render_band_sample(struct renderer *r, int width, int y, int rows, in
         if (kind == TP2_WALK_WHOLE) { /* cut trees: in walks from now on */
             if (count[TP2_COUNTER_CUT] == 0)
                 return 0;
-            r->walking = true;
+            t->walking = true;
             kind = TP2_WALK_START;
             continue;
         }
-        if (count[TP2_COUNTER_CUT] > 0 && r->pass_rays > 1) {
-            r->pass_rays /= 2; /* the same pass again: cut walks are as they were */
+        if (count[TP2_COUNTER_CUT] > 0 && t->pass_rays > 1) {
+            t->pass_rays /= 2; /* the same pass again: cut walks are as they were */
             continue;
         }
         if (kind == TP2_WALK_START)
@@ -546,6 +631,30 @@ static int render_band_sample(struct renderer *r, int width, int y, int rows, in
             return 0;
         }
     }
+}
+
+/* Under --precision auto, after the band's float pass: marks the pixels
+ * whose decisions differ from a neighbour's (retrace.c), the row before
+ * the band (kept from the last band) and the row after it (traced for
+ * its signatures) included, and traces them again, every sample, in
+ * double. */
+static int retrace_band(struct renderer *r, int width, int height, int y, int rows,
+                        int samples, struct render_stats *st)
+{
+    double t0 = clock_seconds();
+    const uint32_t *sig = r->buffers[TP2_BINDING_SIGNATURES].mapped;
+    const uint32_t *after = y + rows < height ? sig + (size_t)rows * width : NULL;
+    size_t listed = retrace_mark(y > 0 ? r->last_signatures : NULL, sig, after, width, rows,
+                                 r->buffers[TP2_BINDING_PIXEL_LIST].mapped);
+    memcpy(r->last_signatures, sig + (size_t)(rows - 1) * width, (size_t)width * sizeof *sig);
+    st->retraced += listed;
+    for (int s = 0; s < samples && listed > 0; s++) {
+        struct pass_area a = {width, y, rows, s, (uint32_t)listed};
+        if (render_band_sample(r, &r->retrace, &a, NULL, &st->passes) != 0)
+            return -1;
+    }
+    st->retrace += clock_seconds() - t0;
+    return 0;
 }
 
 /* Renders every sample of every pixel, band by band, one dispatch per band
@@ -573,9 +682,12 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
         for (int s = 0; s < samples && rc == 0; s++) {
             struct writing w = {&held, (int)((int64_t)held.rows * (s + 1) / samples), width,
                                 on_rows, user, &st->write};
-            rc = render_band_sample(r, width, y, n, s, &w, &st->passes);
+            struct pass_area a = {width, y, n, s, 0};
+            rc = render_band_sample(r, &r->band, &a, &w, &st->passes);
             progress_update(&bar, (double)(band * samples + s + 1) / ((double)samples * bands));
         }
+        if (rc == 0 && r->retracing)
+            rc = retrace_band(r, width, height, y, n, samples, st);
         if (rc == 0) { /* the device may reuse its buffer once this is copied */
             double t1 = clock_seconds();
             memcpy(r->host_band, r->buffers[TP2_BINDING_IMAGE].mapped,
@@ -599,19 +711,25 @@ static void renderer_destroy(struct renderer *r)
         vkDestroyFence(d, r->fence, NULL);
         vkDestroyCommandPool(d, r->command_pool, NULL);
         vkDestroyDescriptorPool(d, r->pool, NULL);
-        for (int i = 0; i < TP2_BINDING_COUNT; i++)
-            vkDestroyBufferView(d, r->views[i], NULL);
-        for (int k = 0; k < TP2_WALK_KINDS; k++)
-            vkDestroyPipeline(d, r->pipelines[k], NULL);
+        struct tracer *passes[2] = {&r->band, &r->retrace};
+        for (int p = 0; p < 2; p++) {
+            for (int i = 0; i < TP2_BINDING_COUNT; i++)
+                vkDestroyBufferView(d, passes[p]->views[i], NULL);
+            for (int k = 0; k < TP2_WALK_KINDS; k++)
+                vkDestroyPipeline(d, passes[p]->pipelines[k], NULL);
+            vkDestroyShaderModule(d, passes[p]->shader, NULL);
+        }
         vkDestroyPipelineCache(d, r->cache, NULL);
-        vkDestroyShaderModule(d, r->shader, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
         vkDestroyDescriptorSetLayout(d, r->set_layout, NULL);
         for (int i = TP2_BINDING_COUNT - 1; i >= 0; i--)
             vk_buffer_destroy(&r->vk, &r->buffers[i]);
+        for (int i = TP2_INPUT_BUFFERS - 1; i >= 0; i--)
+            vk_buffer_destroy(&r->vk, &r->twin[i]);
     }
     vkc_destroy(&r->vk);
     free(r->host_band);
+    free(r->last_signatures);
 }
 
 /* Rays per walk per pass to begin with: TP2_CPU_PASS_RAYS on CPU devices,
@@ -669,9 +787,9 @@ static VkDeviceSize texel_elements(const struct vkc *vk)
 
 /* Every scene buffer must fit its binding (a storage buffer's range, a
  * texel buffer's element count), or the shader would read past what it
- * is given. */
+ * is given. Says which does not unless quiet. */
 static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
-                            bool use_double)
+                            bool use_double, bool quiet)
 {
     static const char *const what[TP2_INPUT_BUFFERS] = {
         [TP2_BINDING_FRAME] = "camera and settings", [TP2_BINDING_LIGHTS] = "lights",
@@ -685,6 +803,8 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
         if (binding_type((uint32_t)i) == VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER) {
             if (p->size[i] / TP2_TEXEL_BYTES <= texels)
                 continue;
+            if (quiet)
+                return -1;
             fprintf(stderr, "tp2: scene too large for device '%s': its %s need %llu "
                             "texels of %d bytes, and one texel buffer holds at most %llu%s\n",
                     vk->props.deviceName, what[i],
@@ -694,6 +814,8 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
             return -1;
         }
         if (p->size[i] > range) {
+            if (quiet)
+                return -1;
             fprintf(stderr, "tp2: scene too large for device '%s': its %s need %llu "
                             "bytes, and one storage buffer holds at most %llu%s\n",
                     vk->props.deviceName, what[i], (unsigned long long)p->size[i],
@@ -724,15 +846,30 @@ static void *create_device(void *arg)
     return NULL;
 }
 
+/* What --stats says of the precision: the one used, or auto's passes. */
+static void describe_precision(const struct renderer *r, const struct render_options *opt,
+                               bool twin_fits, struct render_stats *st)
+{
+    const char *what = r->band.use_double ? "double" : "float";
+    if (r->retracing)
+        what = "auto (float, then pixels on decision boundaries again in double)";
+    else if (opt->retrace && !r->vk.float64)
+        what = "float (auto: the device has no shaderFloat64)";
+    else if (opt->retrace && !twin_fits)
+        what = "float (auto: the double scene does not fit the device)";
+    snprintf(st->precision, sizeof st->precision, "%s", what);
+    st->retracing = r->retracing;
+}
+
 int render_scene(const struct scene *s, const struct render_options *opt,
                  render_rows_fn on_rows, void *user, struct render_stats *stats)
 {
     struct renderer r = {0};
-    struct packed_scene packed = {0};
+    struct packed_scene packed = {0}, twin = {0};
     struct vkc_options vk_opt = {
         .device_index = opt->device_index,
         .need_float64 = opt->use_double && !opt->double_where,
-        .want_float64 = opt->use_double,
+        .want_float64 = opt->use_double || opt->retrace,
         .validate = opt->validate,
     };
     struct pack_options pack_opt = {
@@ -751,7 +888,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     if (!threaded)
         create_device(&job);
     double t1 = clock_seconds();
-    int packed_rc = scene_pack(s, &pack_opt, &packed);
+    int packed_rc = scene_pack(s, &pack_opt, &packed, opt->retrace ? &twin : NULL);
     double t_packed = clock_seconds();
     if (threaded)
         pthread_join(thread, NULL);
@@ -772,20 +909,27 @@ int render_scene(const struct scene *s, const struct render_options *opt,
                 s->nobjects);
         goto done;
     }
-    if (check_scene_fits(&r.vk, &packed, opt->use_double) != 0)
+    if (check_scene_fits(&r.vk, &packed, opt->use_double, false) != 0)
         goto done;
+    bool twin_fits = opt->retrace && check_scene_fits(&r.vk, &twin, true, true) == 0;
     double t_buffers = clock_seconds();
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     r.loop_guard = needs_loop_guard(&r.vk);
-    r.pass_rays = pass_rays(r.loop_guard, &r.walking);
+    r.retracing = twin_fits && r.vk.float64;
+    r.band = (struct tracer){.use_double = opt->use_double, .signatures = r.retracing};
+    r.retrace = (struct tracer){.use_double = true, .pixel_list = true};
+    r.band.pass_rays = pass_rays(r.loop_guard, &r.band.walking);
+    r.retrace.pass_rays = pass_rays(r.loop_guard, &r.retrace.walking);
     r.walk_capacity = r.loop_guard ? TP2_WALK_CAPACITY : 1;
-    VkDeviceSize band_size = (VkDeviceSize)r.band_rows * opt->width * TP2_PIXEL_BYTES;
-    if (create_buffers(&r, &packed, band_size, opt->use_double) != 0)
+    describe_precision(&r, opt, twin_fits, stats);
+    if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;
     double t2 = clock_seconds();
     r.features = packed.features;
     r.count_rays = opt->count_rays;
-    if (create_layouts(&r, opt->use_double) != 0 || need_pipeline(&r, TP2_WALK_WHOLE) != 0 ||
+    /* The retrace pass's pipelines, like the walks', are made when first
+     * needed: a scene where no pixel needs double never makes them. */
+    if (create_layouts(&r) != 0 || need_pipeline(&r, &r.band, TP2_WALK_WHOLE) != 0 ||
         create_descriptors(&r) != 0 || create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
@@ -794,7 +938,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
                   on_rows, user, stats) != 0)
         goto done;
     read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
-    stats->pass_rays = r.pass_rays;
+    stats->pass_rays = r.band.pass_rays;
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
     stats->device = job.seconds;
     stats->bvh = packed.bvh_time;
@@ -805,5 +949,6 @@ int render_scene(const struct scene *s, const struct render_options *opt,
 done:
     renderer_destroy(&r);
     packed_scene_free(&packed);
+    packed_scene_free(&twin);
     return rc;
 }

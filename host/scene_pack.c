@@ -13,6 +13,7 @@
 #include "clock.h"
 #include "gpu_layout.h"
 #include "pigments.h"
+#include "retrace.h"
 #include "shapes.h"
 #include "vec3.h"
 
@@ -306,9 +307,11 @@ static int pack_bvh(const struct bvh *b, struct packed_scene *out)
 }
 
 int scene_pack(const struct scene *s, const struct pack_options *opt,
-               struct packed_scene *out)
+               struct packed_scene *out, struct packed_scene *twin)
 {
     memset(out, 0, sizeof *out);
+    if (twin)
+        memset(twin, 0, sizeof *twin);
     struct layout lay = {.samples = opt->samples ? opt->samples
                                     : s->has_samples ? s->samples : 1};
     camera_basis(s, opt->width, opt->height, &lay.cam);
@@ -322,6 +325,10 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
     if (rc == 0)
         rc = opt->use_double ? pack_d(s, &lay, opt, out) : pack_f(s, &lay, opt, out);
+    if (rc == 0 && twin) {
+        twin->features = out->features;
+        rc = pack_d(s, &lay, opt, twin);
+    }
     if (rc == 0)
         rc = pack_bvh(&lay.bvh, out);
     if (rc == 0)
@@ -329,8 +336,11 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     bvh_free(&lay.bvh);
     free(lay.slots);
     free(lay.texel_offset);
-    if (rc != 0)
+    if (rc != 0) {
         packed_scene_free(out);
+        if (twin)
+            packed_scene_free(twin);
+    }
     return rc;
 }
 

@@ -42,10 +42,13 @@ struct packed_scene {
 
 /* Packs s: camera basis, lights, materials, texels, and the objects as GPU
  * primitives (a mesh makes one per triangle): the bounded ones in BVH
- * order, then the unbounded ones, and the BVH. Returns 0, or -1 out of
- * memory (out zeroed). */
+ * order, then the unbounded ones, and the BVH. twin, unless NULL, gets
+ * the same scene packed for the double shader (--precision auto traces
+ * some pixels again in double): every buffer but the BVH's and the
+ * texels', which both share (out's). Returns 0, or -1 out of memory (out
+ * and twin zeroed). */
 int scene_pack(const struct scene *s, const struct pack_options *opt,
-               struct packed_scene *out);
+               struct packed_scene *out, struct packed_scene *twin);
 
 /* Frees the buffers and zeroes p; safe on a zeroed one. */
 void packed_scene_free(struct packed_scene *p);

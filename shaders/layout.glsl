@@ -13,7 +13,9 @@ struct Frame {
     vec4 fog;         // rgb, density
     vec4 lens;        // aperture radius, focal distance
     vec4 area;        // x: arealight radius
-    vec4 limits;      // x: bailout, the least weight a ray is traced with
+    vec4 limits;      // x: bailout, the least weight a ray is traced with;
+                      // y: least doubt (pixels) of a decision hashed, z: a
+                      // pixel's angle (signature.glsl)
     ivec4 counts;     // width, height, point lights, objects
     ivec4 geometry;   // bounded objects (BVH order), unbounded ones after them, BVH nodes
     ivec4 sampling;   // lattice generator, arealight index, arealight samples, TP2_CANARY_STEPS
@@ -69,28 +71,37 @@ layout(std430, set = 0, binding = TP2_BINDING_STATS) buffer StatsBuf {
 // A walk that goes on in the next pass (see TP2_CANARY_STEPS), and its
 // rays: the current one, then those parked.
 struct Walk {
-    ivec4 where; // pixel x, y; rays parked (-1: finished); rays traced so far
-    vec4 color;  // rgb so far, pruning budget left
+    ivec4 where;    // pixel x, y; rays parked (-1: finished); rays traced so far
+    vec4 color;     // rgb so far, pruning budget left
+    uint signature; // the decisions so far (signature.glsl)
 };
 
 struct WalkRay {
     rvec4 origin; // xyz, weight
     rvec4 dir;    // xyz
     ivec4 info;   // start object, start inward, depth
+    vec4 doubt;   // xyz: Ray.doubt (signature.glsl)
 };
 
 layout(std430, set = 0, binding = TP2_BINDING_STARTED) buffer StartedBuf { uint started[]; };
 layout(std430, set = 0, binding = TP2_BINDING_WALKS) buffer WalkBuf { Walk walks[]; };
 layout(std430, set = 0, binding = TP2_BINDING_WALK_RAYS) buffer WalkRayBuf { WalkRay saved_rays[]; };
+// Per band pixel (and the row after the band): its decisions' signature;
+// the band pixels a list pass traces, as indices into the band.
+layout(std430, set = 0, binding = TP2_BINDING_SIGNATURES) buffer SignatureBuf { uint signatures[]; };
+layout(std430, set = 0, binding = TP2_BINDING_PIXEL_LIST) readonly buffer PixelListBuf { uint pixel_list[]; };
 
-// What this dispatch covers: a band of pixels, which of their samples,
-// and how many rays a walk may trace in it (TP2_WALK_START, _CONTINUE).
+// What this dispatch covers: a band of pixels (or the listed ones of it),
+// which of their samples, and how many rays a walk may trace in it
+// (TP2_WALK_START, _CONTINUE).
 layout(push_constant) uniform Tile {
     ivec2 tile_origin;
     int sample_index;
     int pass_rays;       // rays each walk may trace in this pass
     int walk_capacity;   // walks the walk buffers hold
     int accept_cut;      // 1: pass_rays is 1 and still cut: keep what there is
+    int tile_rows;       // rows of the band; with signatures, one more is traced
+    int list_length;     // pixels in pixel_list (TP2_SPEC_PIXEL_LIST)
 };
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
@@ -107,6 +118,8 @@ layout(constant_id = TP2_SPEC_SAMPLES) const int SAMPLES = 1;
 layout(constant_id = TP2_SPEC_BVH) const bool USE_BVH = true;
 layout(constant_id = TP2_SPEC_LOOP_GUARD) const bool LOOP_GUARD = false;
 layout(constant_id = TP2_SPEC_WALK) const int WALK = TP2_WALK_WHOLE;
+layout(constant_id = TP2_SPEC_SIGNATURES) const bool SIGNATURES = false;
+layout(constant_id = TP2_SPEC_PIXEL_LIST) const bool PIXEL_LIST = false;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
 // TP2_SHAPE_*): code for kinds it does not use is compiled out.

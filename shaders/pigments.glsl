@@ -36,13 +36,34 @@ vec3 texmap_color(int index, rvec3 p)
     return mix(top, bottom, fy);
 }
 
-vec3 pigment_color(int index, rvec3 p)
+// Whether p, which may be off by `doubt` along the surface of normal nf,
+// may lie in another checker cell (signature.glsl): nearer a cell face
+// than that (a doubt of 0: none). A flat face along a cell face (nf an
+// axis, p exactly on it) lies there in both precisions.
+bool unsure_cell(rvec3 x, rvec3 cell, real size, rvec3 nf, float doubt)
+{
+    vec3 f = vec3(x - cell);
+    vec3 margin = min(f, 1.0 - f) * float(size);
+    bvec3 exact = equal(abs(vec3(nf)), vec3(1.0));
+    for (int k = 0; k < 3; ++k)
+        if (margin[k] < doubt && !(exact[k] && f[k] == 0.0))
+            return true;
+    return false;
+}
+
+// The color of pigment `index` at p (doubt: see unsure_cell); a checker's
+// cell is a decision (signature.glsl), the other kinds vary smoothly.
+vec3 pigment_color(int index, rvec3 p, rvec3 nf, float doubt, inout uint sig)
 {
     int kind = pigments[index].kind.x;
     if (USES_PIGMENT(TP2_PIGMENT_CHECKER) && kind == TP2_PIGMENT_CHECKER) {
-        rvec3 cell = floor(p / pigments[index].p.x);
+        real size = pigments[index].p.x;
+        rvec3 x = p / size;
+        rvec3 cell = floor(x);
         real k = cell.x + cell.y + cell.z;
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
+        if (SIGNATURES && doubt > 0.0 && unsure_cell(x, cell, size, nf, doubt))
+            sig |= UNSURE;
         return even ? pigments[index].color1.rgb : pigments[index].color2.rgb;
     }
     if (USES_PIGMENT(TP2_PIGMENT_GRADIENT) && kind == TP2_PIGMENT_GRADIENT) {

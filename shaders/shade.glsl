@@ -32,6 +32,14 @@ int light_samples(Finish fin)
     return HAS_AREA && frame.sampling.y >= 0 ? n - 1 + frame.sampling.z : n;
 }
 
+// Whether light sample j is one of the arealight's, which each pixel
+// turns its own way (so its shadows differ between neighbours by design).
+bool area_sample(int j)
+{
+    int a = frame.sampling.y;
+    return HAS_AREA && a >= 0 && j >= a && j < a + frame.sampling.z;
+}
+
 // Light sample j, in light order: a point light as it is, the arealight
 // (light frame.sampling.y) as frame.sampling.z points of color Ci / samples
 // spread over its sphere, turned by area_shift.

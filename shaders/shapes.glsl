@@ -545,6 +545,57 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
     }
 }
 
+// The surface's curvature at p (part from hit_object), as the least and
+// the greatest of its principal curvatures, positive where it bulges
+// outward (a sphere of radius r: 1/r, 1/r; flat faces: 0, 0). The float
+// pass's doubt uses it (signature.glsl): how far a normal computed from a
+// point off by e may turn (e times the largest magnitude), and how much a
+// mirror or a lens there may spread or focus a beam.
+vec2 surface_curvature(int i, int part, rvec3 p)
+{
+    int kind = shape_of(i);
+    if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
+        return vec2(1.0 / float(object_row(i, 0).w));
+#ifdef TP2_CURVED
+    if (((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
+         (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE)) && part == 0) {
+        rvec4 base = object_row(i, 0);
+        rvec4 axis = object_row(i, 1);
+        rvec3 y = p - base.xyz;
+        return vec2(0.0, 1.0 / float(length(y - dot(y, axis.xyz) * axis.xyz)));
+    }
+    if (USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS) {
+        // 1/r around the tube; (rho - R) / (r rho) around the axis
+        rvec4 ca = object_row(i, 0);
+        rvec4 ab = object_row(i, 1);
+        rvec3 y = p - ca.xyz;
+        float rho = float(length(y - dot(y, ab.xyz) * ab.xyz));
+        float tube = 1.0 / float(ab.w), ring = (rho - float(ca.w)) / (float(ab.w) * rho);
+        return vec2(min(tube, ring), max(tube, ring));
+    }
+    if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC) {
+        // either sign, up to |Hessian| / |gradient| (the Hessian 2M bounded
+        // by its row sums)
+        rvec3 y = p - extra[object_ids(i).w].xyz;
+        rvec3 grad = 2.0 * quadric_m(i, y) + quadric_g(i);
+        vec3 rows = vec3(abs(quadric_m(i, rvec3(1, 0, 0)))) + vec3(abs(quadric_m(i, rvec3(0, 1, 0)))) +
+                    vec3(abs(quadric_m(i, rvec3(0, 0, 1))));
+        float k = 2.0 * max(rows.x, max(rows.y, rows.z)) / float(length(grad));
+        return vec2(-k, k);
+    }
+#endif
+    return vec2(0.0);
+}
+
+// How many times a plain intersection's rounding object i's may have: a
+// torus's quartic, solved by isolation, loses more digits (256 times:
+// measured, README.TXT "Accuracy").
+float hit_rounding(int i)
+{
+    int kind = shape_of(i);
+    return USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS ? 256.0 : 1.0;
+}
+
 // Whether a ray through object i's surface goes into an inside (a
 // triangle has none: transmitted rays go on unbent).
 bool has_inside(int i)

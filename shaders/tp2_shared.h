@@ -21,7 +21,9 @@
 #define TP2_BINDING_STARTED 10   /* per band pixel: its walk has begun */
 #define TP2_BINDING_WALKS 11     /* walks that go on in the next pass */
 #define TP2_BINDING_WALK_RAYS 12 /* their rays: TP2_WALK_RAYS per walk */
-#define TP2_BINDING_COUNT 13
+#define TP2_BINDING_SIGNATURES 13 /* per band pixel: its decisions (signature.glsl) */
+#define TP2_BINDING_PIXEL_LIST 14 /* band pixels a list pass traces again */
+#define TP2_BINDING_COUNT 15
 
 /* Objects and BVH nodes, the loads of every ray's inner loop, are read as
  * texel buffers of 16-byte texels (usamplerBuffer over R32G32B32A32_UINT,
@@ -53,7 +55,9 @@
 #define TP2_SPEC_LOOP_GUARD 11 /* bool: detect lavapipe's loop limit */
 #define TP2_SPEC_UNBOUNDED_SHAPE 12 /* int: the one TP2_SHAPE_* of the unbounded ones, else -1 */
 #define TP2_SPEC_WALK 13      /* int: TP2_WALK_*, what a pass does with walks */
-#define TP2_SPEC_COUNT 14
+#define TP2_SPEC_SIGNATURES 14 /* bool: record each pixel's decisions (signature.glsl) */
+#define TP2_SPEC_PIXEL_LIST 15 /* bool: trace the listed pixels, not the whole band */
+#define TP2_SPEC_COUNT 16
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0

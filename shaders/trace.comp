@@ -29,6 +29,7 @@
 #endif
 
 #include "layout.glsl"
+#include "signature.glsl"
 #include "random.glsl"
 #include "intersect.glsl"
 #include "pigments.glsl"
@@ -71,19 +72,28 @@ bool traced(float w, inout float budget, inout vec3 color)
     return false;
 }
 
-// Traces one ray: adds what it sees to color and returns how many
-// children it spawns (0 to 2), the first in `first`, the other in `second`.
+// Traces one ray: adds what it sees to color, its decisions to sig, and
+// returns how many children it spawns (0 to 2), the first in `first`, the
+// other in `second`. Under SIGNATURES, `doubt` is the ray's (signature.glsl)
+// and the children's come out in first_doubt and second_doubt; otherwise
+// all of that compiles out (it lives apart from Ray so that the walk's
+// stack of rays does not carry it).
 // (trace_scene is called twice, for the ray and for shadow rays: each call
 // is inlined whole, which costs compile time, but one call serving both
 // was 25% slower on lavapipe.)
-int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, out Ray first,
-               out Ray second)
+int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout float budget,
+               inout uint sig, out Ray first, out Ray second, out vec4 first_doubt,
+               out vec4 second_doubt)
 {
     first = second = ray;
+    first_doubt = second_doubt = doubt;
     vec3 gray = frame.background.rgb;
     float weight = ray.weight;
     Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false);
-    if (h.object < 0) {
+    float stake = weight / float(SAMPLES); // what a flip here can change
+    decided(sig, uint(h.object));
+    if (h.object < 0) { // boundaries beyond move with the direction (signature.glsl)
+        seen(sig, far_pixels(doubt), stake);
         color += weight * (HAS_FOG ? frame.fog.rgb : gray);
         return 0;
     }
@@ -97,6 +107,19 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
     real scale;
     surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale);
     bool entering = dot(ray.dir, n) < 0.0;
+    // How far the hit may be off, and its footprint (signature.glsl).
+    float cosine = abs(float(dot(ray.dir, n)));
+    // the surface's curvature as the ray meets it: from inside, hollow
+    vec2 curving = SIGNATURES ? clamp(surface_curvature(h.object, h.part, sh.p), -1e15, 1e15)
+                              : vec2(0.0);
+    curving = entering ? curving : -curving.yx;
+    float bend = max(abs(curving.x), abs(curving.y));
+    HitDoubt hd = doubt_at(doubt, float(h.t),
+                           hit_rounding(h.object) * float(scale + max_abs(ray.origin)), cosine, bend);
+    seen(sig, max(hd.pixels, far_pixels(doubt)), stake);
+    decided(sig, uint(h.part));
+    if (at_stake(stake) && cosine < hd.angle) // entering or leaving
+        sig |= UNSURE;
     rvec3 nf = entering ? n : -n;
     rvec3 offset = nf * (scale * TP2_REL_EPS);
     // Rays leaving on the incoming side start here, going along nf: into
@@ -110,7 +133,7 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
     ivec4 ids = object_ids(h.object);
     Finish fin = finishes[ids.z];
     sh.fin = fin;
-    sh.pig = pigment_color(ids.y, sh.p);
+    sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
     vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;
     int samples = light_samples(fin);
     for (int j = 0; j < samples; ++j) {
@@ -120,7 +143,10 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
         if (!light_ray(sh, j, area_shift, d, dist, lit))
             continue;
         ++ray_tally[TP2_STAT_SHADOW];
-        if (trace_scene(outside, d, back, dist, true).object < 0)
+        bool shadowed = trace_scene(outside, d, back, dist, true).object >= 0;
+        if (!area_sample(j)) // each is a share of its light, turned per pixel
+            decided(sig, uint(shadowed));
+        if (!shadowed)
             local += lit;
     }
     color += weight * local;
@@ -133,10 +159,12 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
         color += weight * (max(kr, 0.0) + max(kt, 0.0)) * gray;
         return 0;
     }
+    vec4 mirrored = mirrored_doubt(doubt, hd, curving);
     int children = 0;
     if (kr > 0.0 && traced(weight * kr, budget, color)) {
         rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
         first = Ray(outside, r, back, weight * kr, depth);
+        first_doubt = mirrored;
         ++children;
         ++ray_tally[TP2_STAT_REFLECTED];
     }
@@ -144,19 +172,29 @@ int trace_step(Ray ray, vec2 area_shift, inout vec3 color, inout float budget, o
         real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
         real cosi = -dot(ray.dir, nf);
         real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+        float e2 = float(eta * eta);
         Ray t;
+        vec4 t_doubt = mirrored;
+        if (at_stake(stake * kt) && has_inside(h.object) &&
+            abs(float(k)) < 2.0 * e2 * hd.angle)
+            sig |= UNSURE; // total internal reflection or not
         if (!has_inside(h.object)) { // SPEC 3: through a triangle unbent
             t = Ray(p - offset, ray.dir, Start(h.object, entering), weight * kt, depth);
+            t_doubt = refracted_doubt(doubt, hd, vec2(0.0), 1.0, 1.0);
         } else if (k < 0.0) { // total internal reflection: the mirror direction
             t = Ray(outside, ray.dir + 2.0 * cosi * nf, back, weight * kt, depth);
         } else {
             rvec3 dir_t = normalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
             t = Ray(p - offset, dir_t, Start(h.object, entering), weight * kt, depth);
+            t_doubt = refracted_doubt(doubt, hd, curving, float(eta), float(sqrt(k)));
         }
-        if (children == 0)
+        if (children == 0) {
             first = t;
-        else
+            first_doubt = t_doubt;
+        } else {
             second = t;
+            second_doubt = t_doubt;
+        }
         ++children;
         ++ray_tally[TP2_STAT_TRANSMITTED];
     }
@@ -174,12 +212,14 @@ struct Walk_ {
     bool live;
     vec3 color;      // what the rays traced so far add
     float budget;    // pruning budget left (see traced())
+    uint sig;        // the decisions so far (signature.glsl)
+    vec4 doubt;      // the ray's doubt, under SIGNATURES (signature.glsl)
 };
 
-WalkRay packed_ray(Ray r)
+WalkRay packed_ray(Ray r, vec4 doubt)
 {
     return WalkRay(rvec4(r.origin, r.weight), rvec4(r.dir, 0.0),
-                   ivec4(r.start.object, int(r.start.inward), r.depth, 0));
+                   ivec4(r.start.object, int(r.start.inward), r.depth, 0), doubt);
 }
 
 Ray unpacked_ray(WalkRay w)
@@ -237,6 +277,7 @@ void main()
     int entry = -1; // the saved walk this invocation goes on with
     Walk_ w;
     Ray pending[STACK_SIZE];
+    uvec2 pending_doubt[STACK_SIZE]; // under SIGNATURES only, as halves
     if (WALK == TP2_WALK_CONTINUE) {
         entry = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
         if (entry >= min(int(counters[TP2_COUNTER_WALKS]), walk_capacity))
@@ -247,14 +288,28 @@ void main()
         pixel = saved.where.xy;
         int base = entry * TP2_WALK_RAYS;
         w = Walk_(unpacked_ray(saved_rays[base]), saved.where.z, saved.where.w, true,
-                  saved.color.rgb, saved.color.a);
-        for (int k = 0; k < w.sp; ++k)
+                  saved.color.rgb, saved.color.a, saved.signature, saved_rays[base].doubt);
+        for (int k = 0; k < w.sp; ++k) {
             pending[k] = unpacked_ray(saved_rays[base + 1 + k]);
+            if (SIGNATURES)
+                pending_doubt[k] = packed_doubt(saved_rays[base + 1 + k].doubt);
+        }
     } else {
-        pixel = tile_origin + ivec2(gl_GlobalInvocationID.xy);
-        if (pixel.x >= width || pixel.y >= height)
-            return;
-        if (LOOP_GUARD && started[int(gl_GlobalInvocationID.y) * width + pixel.x] != 0u)
+        if (PIXEL_LIST) { // the listed pixels of the band, one per invocation
+            int at = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) +
+                     int(gl_LocalInvocationIndex);
+            if (at >= list_length)
+                return;
+            int listed = int(pixel_list[at]);
+            pixel = ivec2(listed % width, tile_origin.y + listed / width);
+        } else { // the band, and the row after it when recording signatures
+            pixel = tile_origin + ivec2(gl_GlobalInvocationID.xy);
+            if (pixel.x >= width || pixel.y >= height ||
+                pixel.y - tile_origin.y >= tile_rows + int(SIGNATURES))
+                return;
+        }
+        int index = (pixel.y - tile_origin.y) * width + pixel.x;
+        if (LOOP_GUARD && started[index] != 0u)
             return;
         // Sample s of SAMPLES: the pixel center when there is one, else
         // stratified in the pixel. Each adds its share to the pixel.
@@ -263,7 +318,12 @@ void main()
         real y = 1.0 - (2.0 * (real(pixel.y) + real(offset.y))) / real(height);
         rvec3 origin, dir;
         camera_ray(x, y, random2(pixel, uint(2 * s + 1)), origin, dir);
-        w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), frame.limits.x);
+        uint sig = SIGNATURES && s > 0 ? signatures[index] : SIGNATURE_START;
+        // The direction's rounding, and a pixel's footprint (signature.glsl;
+        // frame.limits.z is a pixel's angle).
+        vec4 doubt = vec4(0.0, ROUNDING, 0.0, frame.limits.z);
+        w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), frame.limits.x,
+                  sig, doubt);
         ray_tally[TP2_STAT_CAMERA] = 1u;
     }
 
@@ -273,15 +333,24 @@ void main()
     int end = WALK == TP2_WALK_WHOLE ? MAX_RAYS : min(w.traced + pass_rays, MAX_RAYS);
     for (; w.traced < end && w.live; ++w.traced) {
         Ray first, second;
-        int children = trace_step(w.ray, area_shift, w.color, w.budget, first, second);
-        if (children == 2 && w.sp < STACK_SIZE)
+        vec4 first_doubt, second_doubt;
+        int children = trace_step(w.ray, w.doubt, area_shift, w.color, w.budget, w.sig, first,
+                                  second, first_doubt, second_doubt);
+        if (children == 2 && w.sp < STACK_SIZE) {
+            if (SIGNATURES)
+                pending_doubt[w.sp] = packed_doubt(second_doubt);
             pending[w.sp++] = second;
-        if (children > 0)
+        }
+        if (children > 0) {
             w.ray = first;
-        else if (w.sp > 0)
+            w.doubt = first_doubt;
+        } else if (w.sp > 0) {
             w.ray = pending[--w.sp];
-        else
+            if (SIGNATURES)
+                w.doubt = unpacked_doubt(pending_doubt[w.sp]);
+        } else {
             w.live = false;
+        }
     }
     w.live = w.live && w.traced < MAX_RAYS;
 
@@ -293,11 +362,15 @@ void main()
         atomicAdd(counters[TP2_COUNTER_LOST], 1u);
         w.live = false; // what there is, wrong: tp2 says so
     }
-    // pixels[] holds one band of whole rows, from row tile_origin.y on.
+    // pixels[] holds one band of whole rows, from row tile_origin.y on;
+    // the row after it is traced for its signatures only.
     int index = (pixel.y - tile_origin.y) * width + pixel.x;
     if (!w.live) {
         vec3 share = w.color / float(SAMPLES);
-        pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
+        if (pixel.y - tile_origin.y < tile_rows)
+            pixels[index] = vec4((s == 0 ? vec3(0.0) : pixels[index].rgb) + share, 1.0);
+        if (SIGNATURES)
+            signatures[index] = w.sig;
         if (entry >= 0)
             walks[entry].where.z = -1;
         else if (LOOP_GUARD)
@@ -311,11 +384,11 @@ void main()
             }
             started[index] = 1u;
         }
-        walks[entry] = Walk(ivec4(pixel, w.sp, w.traced), vec4(w.color, w.budget));
+        walks[entry] = Walk(ivec4(pixel, w.sp, w.traced), vec4(w.color, w.budget), w.sig);
         int base = entry * TP2_WALK_RAYS;
-        saved_rays[base] = packed_ray(w.ray);
+        saved_rays[base] = packed_ray(w.ray, w.doubt);
         for (int k = 0; k < w.sp; ++k)
-            saved_rays[base + 1 + k] = packed_ray(pending[k]);
+            saved_rays[base + 1 + k] = packed_ray(pending[k], SIGNATURES ? unpacked_doubt(pending_doubt[k]) : vec4(0.0));
         atomicAdd(counters[TP2_COUNTER_UNFINISHED], 1u);
     }
     if (COUNT_RAYS)

@@ -89,7 +89,7 @@ def case_usage_errors(c):
     c.usage_error(["--bogus", SCENE, c.out()], "tp2: unknown option '--bogus'")
     c.usage_error(["--device", SCENE, c.out()], "tp2: --device needs a device index")
     c.usage_error(["--device"], "tp2: --device needs a device index, found 'nothing'")
-    c.usage_error(["--precision", "half", SCENE, c.out()], "tp2: --precision needs 'float' or 'double'")
+    c.usage_error(["--precision", "half", SCENE, c.out()], "tp2: --precision needs 'auto', 'float' or 'double'")
     c.usage_error([SCENE, c.out("out.jpg")], "tp2: cannot tell the format of")
     c.usage_error(["--bailout", "2", SCENE, c.out()], "tp2: --bailout needs a weight from 0 to 1")
     c.usage_error(["--spp", "0", SCENE, c.out()], "tp2: --spp needs a number of samples")

@@ -506,22 +506,122 @@ def case_bands_agree(c):
         c.expect(outs[0] == outs[1], f".{ext}: 27 bands and 1 band differ")
 
 
-def case_stats(c):
-    """--stats names every phase and counts W x H x spp camera rays."""
+def auto_stats(err):
+    """(precision line, pixels traced again or None) from tp2 --stats."""
+    precision = re.search(r"tp2: precision  (.*)", err)
+    again = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+    return precision[1] if precision else None, int(again[1]) if again else None
+
+
+BAILOUT = repr(1 / 255)  # the default, spelled out for --precision double
+
+
+def case_auto_is_float_or_double(c):
+    """--precision auto: every pixel is the float image's or, where it was
+    traced again, the double image's (same pruning), bit for bit; some are
+    the double one's where float's differ (a far checkered sphere, where
+    float flips cells), and no more differ from float than --stats says
+    were traced again. With bands of 8 rows the image is the same."""
+    scene = os.path.join(HERE, "stress", "quadric-far.txt")
+    size = ("160", "120")
+    images = {}
+    for name, options, env in (("float", ["--precision", "float"], {}),
+                               ("double", ["--precision", "double", "--bailout", BAILOUT], {}),
+                               ("auto", [], {}), ("bands", [], {"TP2_BAND_BYTES": "1"})):
+        out = os.path.join(c.tmp, name + ".pfm")
+        status, _, err = run(c.tp2, ["--stats", "--quiet", *options, scene, out, *size], env)
+        c.require(status == 0, f"{name}: exit {status}: {err}")
+        images[name] = read_pfm(out)[2]
+        if name == "auto":
+            precision, again = auto_stats(err)
+            c.expect(precision and precision.startswith("auto") and again is not None,
+                     f"auto --stats: {err!r}")
+    same_float = same_double = other = 0
+    for rf, rd, ra in zip(images["float"], images["double"], images["auto"]):
+        for f, d, a in zip(rf, rd, ra):
+            if a == f:
+                same_float += 1
+            elif a == d:
+                same_double += 1
+            else:
+                other += 1
+    c.expect(other == 0, f"{other} pixels neither float's nor double's")
+    c.expect(same_double > 0, "no pixel took the double image's value")
+    c.expect(again is not None and same_double <= again,
+             f"{same_double} pixels from double, {again} traced again")
+    c.expect(images["bands"] == images["auto"], "8-row bands and one band differ")
+
+
+def expect_auto_is_float(c, env, why):
+    """Under env, auto renders float alone (the very bytes of --precision
+    float) and --stats says why."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
-    status, _, err = run(c.tp2, ["--stats", "--spp", "3", scene, os.path.join(c.tmp, "o.ppm"),
-                                 "10", "7"])
-    c.expect(status == 0, f"exit {status}: {err}")
-    for phase in ("parse", "device", "bvh", "upload", "pipeline", "render", "readback", "write"):
-        c.expect(f"tp2: {phase} " in err, f"no {phase} line in {err!r}")
-    counts = {}
-    for line in err.splitlines():
-        words = line.split()
-        if len(words) >= 4 and words[1] == "rays":
-            counts[words[2]] = int(words[3])
-    c.expect(counts.get("camera") == 10 * 7 * 3, f"camera rays {counts.get('camera')}")
-    c.expect(counts.get("shadow", 0) > 0 and counts.get("reflected", 0) > 0, f"{counts}")
-    c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"), f"{counts}")
+    outs = {}
+    for name, options in (("auto", []), ("float", ["--precision", "float"])):
+        outs[name] = os.path.join(c.tmp, name + ".pfm")
+        status, _, err = run(c.tp2, ["--stats", *options, scene, outs[name], "40", "30"], env)
+        c.require(status == 0, f"{name}: exit {status}: {err}")
+        if name == "auto":
+            precision, again = auto_stats(err)
+            c.expect(precision == f"float (auto: {why})" and again is None,
+                     f"auto --stats: {err!r}")
+    with open(outs["auto"], "rb") as a, open(outs["float"], "rb") as f:
+        c.expect(a.read() == f.read(), f"auto ({why}) differs from float")
+    return scene
+
+
+def case_auto_without_float64(c):
+    """On a device without shaderFloat64 (TP2_FLOAT64=0 hides it) auto is
+    float, and --stats says so; --precision double is refused, exit 1,
+    nothing written."""
+    env = {"TP2_FLOAT64": "0"}
+    scene = expect_auto_is_float(c, env, "the device has no shaderFloat64")
+    out = os.path.join(c.tmp, "d.pfm")
+    status, _, err = run(c.tp2, ["--precision", "double", scene, out, "40", "30"], env)
+    c.expect(status == 1 and "has no shaderFloat64" in err and not os.path.exists(out),
+             f"--precision double: exit {status}, {err!r}")
+
+
+def case_auto_double_too_large(c):
+    """Where the double scene would not fit the device (objects take twice
+    the texels in double: TP2_TEXEL_ELEMENTS between the two) auto renders
+    float alone, and --stats says so."""
+    objects = sum(1 for line in effects_scene().splitlines()
+                  if re.match(r"\d+ \d+ (sphere|plane) ", line))
+    env = {"TP2_TEXEL_ELEMENTS": str(4 * objects)}  # TP2_OBJECT_TEXELS_F each
+    expect_auto_is_float(c, env, "the double scene does not fit the device")
+
+
+def case_stats(c):
+    """--stats names every phase and counts W x H x spp camera rays under
+    --precision float; under auto also the row after each band but the
+    last (traced for its signatures) and the pixels traced again, which it
+    reports."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    for precision in ("float", "auto"):
+        status, _, err = run(c.tp2, ["--stats", "--spp", "3", "--precision", precision, scene,
+                                     os.path.join(c.tmp, "o.ppm"), "10", "20"],
+                             dict(os.environ, TP2_BAND_BYTES="1"))
+        c.expect(status == 0, f"exit {status}: {err}")
+        for phase in ("parse", "device", "bvh", "upload", "pipeline", "render", "readback",
+                      "write"):
+            c.expect(f"tp2: {phase} " in err, f"no {phase} line in {err!r}")
+        counts = {}
+        for line in err.splitlines():
+            words = line.split()
+            if len(words) >= 4 and words[1] == "rays":
+                counts[words[2]] = int(words[3])
+        retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+        bands = re.search(r"tp2: render .*\((\d+) bands? of 8 rows", err)
+        c.expect(bands and int(bands.group(1)) == 3, f"20 rows in 8-row bands: {err!r}")
+        c.expect((retraced is not None) == (precision == "auto"), f"retrace line: {err!r}")
+        again = int(retraced.group(1)) if retraced else 0
+        after = 2 * 10 if precision == "auto" else 0
+        c.expect(counts.get("camera") == (10 * 20 + after + again) * 3,
+                 f"{precision}: camera rays {counts.get('camera')}, {again} traced again")
+        c.expect(counts.get("shadow", 0) > 0 and counts.get("reflected", 0) > 0, f"{counts}")
+        c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"),
+                 f"{counts}")
 
 
 if __name__ == "__main__":

@@ -303,8 +303,8 @@ struct buffer {
 #define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
 #define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
-#define WALK_FIELDS(F, T) F(T, where) F(T, color)
-#define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info)
+#define WALK_FIELDS(F, T) F(T, where) F(T, color) F(T, signature)
+#define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info) F(T, doubt)
 
 #define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
 FIELDS(FRAME_FIELDS, gpu_frame_f)
@@ -570,7 +570,8 @@ static void check_bindings(void)
                       TP2_BINDING_EXTRA,    TP2_BINDING_TEXELS,
                       TP2_BINDING_IMAGE,    TP2_BINDING_STATS,
                       TP2_BINDING_STARTED,  TP2_BINDING_WALKS,
-                      TP2_BINDING_WALK_RAYS};
+                      TP2_BINDING_WALK_RAYS, TP2_BINDING_SIGNATURES,
+                      TP2_BINDING_PIXEL_LIST};
     size_t n = sizeof b / sizeof b[0];
     int ok = n == TP2_BINDING_COUNT;
     for (size_t i = 0; i < n; i++) {
@@ -594,6 +595,10 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
     check_plain_array(m, "ExtraBuf", TP2_BINDING_EXTRA, 4 * real_size, real_kind, "rvec4");
     check_plain_array(m, "TexelBuf", TP2_BINDING_TEXELS, sizeof(uint32_t), KIND_U32, "uint");
     check_plain_array(m, "StartedBuf", TP2_BINDING_STARTED, sizeof(uint32_t), KIND_U32, "uint");
+    check_plain_array(m, "SignatureBuf", TP2_BINDING_SIGNATURES, sizeof(uint32_t), KIND_U32,
+                      "uint");
+    check_plain_array(m, "PixelListBuf", TP2_BINDING_PIXEL_LIST, sizeof(uint32_t), KIND_U32,
+                      "uint");
     check_stats(m);
     check_texel_buffer(m, "object_texels", TP2_BINDING_OBJECTS);
     check_texel_buffer(m, "node_texels", TP2_BINDING_BVH);

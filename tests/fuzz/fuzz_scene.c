@@ -62,7 +62,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         .bailout = 1.0 / 255,
     };
     struct packed_scene p;
-    if (scene_pack(&s, &opt, &p) == 0) {
+    if (scene_pack(&s, &opt, &p, NULL) == 0) {
         for (int b = 0; b < TP2_INPUT_BUFFERS; b++)
             if (!p.data[b] || p.size[b] == 0)
                 abort(); /* every buffer holds at least one element */

@@ -1,0 +1,38 @@
+/* retrace.h: which pixels --precision auto traces again in double. */
+#ifndef TP2_RETRACE_H
+#define TP2_RETRACE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* The float pass gives each pixel a signature (shaders/signature.glsl):
+ * a hash of its decisions, and two bits. */
+#define RETRACE_UNSURE 0x80000000u    /* a decision was within float's error */
+#define RETRACE_SENSITIVE 0x40000000u /* its boundaries may move by a pixel's
+                                       * fraction that matters */
+#define RETRACE_HASH 0x3fffffffu
+
+/* What counts (frame.limits.y and .w): a boundary between two pixels of
+ * different hashes is traced again where rounding may move it by at least
+ * RETRACE_PIXELS of a pixel (to move it across a pixel's center it would
+ * have to pass within that distance of it); a decision counts where
+ * flipping it could change the pixel by RETRACE_STAKE or more (one 8-bit
+ * level, for radiance within [0, 1]). README.TXT "Accuracy" has the
+ * measurements that chose them. */
+#define RETRACE_PIXELS 0.1
+#define RETRACE_STAKE (1.0 / 255.0)
+
+/* A pixel is traced again in double where it is UNSURE, or where its hash
+ * differs from one of its eight neighbours' and one of the two is
+ * SENSITIVE: a boundary lies between them that rounding may move across
+ * a pixel's center.
+ *
+ * Marks such pixels of a band of n rows of `width` (rows[y * width + x]),
+ * neighbours in the row above the band (above, or NULL at the image's
+ * top) and below it (below, or NULL at its bottom) included. Writes their
+ * indices in the band, y * width + x in row order, to list; returns how
+ * many. */
+size_t retrace_mark(const uint32_t *above, const uint32_t *rows, const uint32_t *below,
+                    int width, int n, uint32_t *list);
+
+#endif

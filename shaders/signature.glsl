@@ -1,0 +1,126 @@
+// signature.glsl: where float's rounding can flip a decision
+// (--precision auto).
+//
+// Float's rounding changes an image where it flips a discrete decision:
+// which object a ray hits (and which face), whether a light is shadowed,
+// which checker cell a point lies in, whether a ray enters or leaves,
+// whether it is totally reflected. The float pass keeps a word per pixel
+// (render.c reads it, retrace.c marks from it): a 30-bit hash of its
+// decisions, and two bits. UNSURE: a decision with a local margin (a
+// checker cell face, the sign of n.d, total internal reflection) was
+// within its doubt of flipping. SENSITIVE: a boundary seen there may move
+// by frame.limits.y pixels or more. A pixel is traced again in double
+// where it is UNSURE, or where its hash differs from a neighbour's and
+// one of the two is SENSITIVE: which object a ray hits, and shadows, have
+// no local margin (a ray that misses an object cannot tell by how much),
+// so their boundaries are found between neighbours; where a boundary
+// cannot move by a tenth of a pixel, a flip would need it to pass that
+// near a pixel's center.
+//
+// The doubt is a bound on float's error, carried along each ray and
+// measured in pixels against the footprint of its pixel (below). It is a
+// first-order estimate with a safety factor, not a proof: README.TXT
+// "Accuracy" has what it was checked against.
+
+const uint UNSURE = 0x80000000u;    // a decision within float's error of flipping
+const uint SENSITIVE = 0x40000000u; // boundaries here move by frame.limits.y pixels or more
+const uint HASH = 0x3fffffffu;
+const uint SIGNATURE_START = 2166136261u & HASH; // FNV-1a's offset basis
+
+// Float's unit roundoff, 2^-24, times a safety factor for the operations
+// one step of a ray takes (an intersection, a normal, a reflection).
+const float ROUNDING = 4.0 * 5.9604645e-8;
+
+// Mixes one decision into the hash (FNV-1a on a whole word, 30 bits);
+// compiled out when the pass records no signatures.
+void decided(inout uint sig, uint choice)
+{
+    if (SIGNATURES)
+        sig = (((sig & HASH) ^ choice) * 16777619u & HASH) | (sig & ~HASH);
+}
+
+// A ray's doubt (Ray.doubt) is measured against the footprint of its
+// pixel, which curved mirrors and lenses spread or focus just as they
+// spread or focus errors (to first order, the same map carries both): x
+// is how far, in pixels, what the ray meets may be off from what was
+// carried to its origin; y how far its direction may be off from the
+// rounding at its origin (radians, not yet in pixels); z and w the
+// footprint: its width across the ray at the origin and how fast that
+// grows with distance (radians; negative while it converges).
+
+// What is known at a hit at distance t: how far, in pixels, the hit point
+// may be off; how far along the surface (spread by a grazing ray: cosine
+// = |n.d|); how far the angle of incidence may be off; the footprint's
+// width across the ray and along the surface; and the rounding of the
+// normal computed there (scale: the size of the numbers that computed the
+// hit; bend: the largest magnitude of the surface's curvature).
+struct HitDoubt {
+    float pixels, along, angle, width, width_along, turn;
+};
+
+HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
+{
+    HitDoubt h;
+    float grazing = 1.0 / max(cosine, 1e-6);
+    h.width = abs(doubt.z + doubt.w * t);
+    h.width_along = h.width * grazing;
+    h.pixels = doubt.x + (doubt.y * t + ROUNDING * (scale + t)) / h.width;
+    h.along = h.pixels * h.width_along;
+    h.turn = ROUNDING * (1.0 + abs(bend) * scale);
+    h.angle = h.pixels * (abs(doubt.w) + abs(bend) * h.width_along) + doubt.y + h.turn;
+    return h;
+}
+
+// How far, in pixels, boundaries beyond the ray's origin may move.
+float far_pixels(vec4 doubt)
+{
+    return doubt.x + (doubt.y + ROUNDING) / abs(doubt.w);
+}
+
+// The doubt of a ray leaving the hit, mirrored or refracted (eta the ratio
+// of indices, cos_t the cosine it leaves at). curving holds the least and
+// the greatest curvature of the surface as the ray meets it (positive
+// where it bulges toward the ray); of these, the one that spreads the
+// beam least is taken, so that the footprint is never overestimated. A
+// mirror adds twice the normal's turn over the footprint to the beam's
+// spread, a refraction bends it by the paraxial law
+// (n'u' = nu - h (n' - n) / R).
+vec4 mirrored_doubt(vec4 doubt, HitDoubt h, vec2 curving)
+{
+    return vec4(h.pixels, 2.0 * h.turn, h.width, doubt.w + 2.0 * curving.x * h.width_along);
+}
+
+vec4 refracted_doubt(vec4 doubt, HitDoubt h, vec2 curving, float eta, float cos_t)
+{
+    float c = eta > 1.0 ? curving.x : curving.y;
+    return vec4(h.pixels, (1.0 + eta) * h.turn / max(cos_t, 1e-3), h.width,
+                eta * doubt.w + (eta - 1.0) * c * h.width_along);
+}
+
+// A doubt parked on the walk's stack, in half precision: half the memory
+// traffic of lavapipe's stack (10-bit mantissas lose nothing that the
+// safety factor in ROUNDING does not cover; past 65504 a half is infinite,
+// which only says more).
+uvec2 packed_doubt(vec4 d)
+{
+    return uvec2(packHalf2x16(d.xy), packHalf2x16(d.zw));
+}
+
+vec4 unpacked_doubt(uvec2 h)
+{
+    return vec4(unpackHalf2x16(h.x), unpackHalf2x16(h.y));
+}
+
+// Whether a decision that a flip of changes the pixel by up to `stake`
+// counts (frame.limits.w: what is less cannot move a pixel by a level).
+bool at_stake(float stake)
+{
+    return SIGNATURES && stake >= frame.limits.w;
+}
+
+// Marks sig SENSITIVE where boundaries seen here may move by `pixels`.
+void seen(inout uint sig, float pixels, float stake)
+{
+    if (at_stake(stake) && pixels >= frame.limits.y)
+        sig |= SENSITIVE;
+}
