@@ -3,6 +3,7 @@
 
     python3 bench/compare.py OLD_TP2 NEW_TP2 [--scenes FILE...] [--sizes 1920x1080]
                              [--runs 5] [--imgcmp build/tests/tp2-imgcmp] [--bailout W]
+                             [--old-options "..."] [--new-options "..."]
 
 For each scene and size, the two builds render alternately (the old one
 first in even rounds, the new one first in odd ones), after one untimed
@@ -11,7 +12,10 @@ are taken per run, and the table gives their medians, the ratio new / old
 of the medians, and how the two images compare (tp2-imgcmp: mean error in
 levels and pixels off by more than 8; "same" when identical). Default
 scenes: those of bench.py (corpus and scenes/ without texmap) that the
-old build can read. VK_ICD_FILENAMES is set to lavapipe when unset.
+old build can read. --old-options and --new-options pass options to one
+build only, so that one build can be compared with itself under two
+settings (e.g. --precision float against auto). VK_ICD_FILENAMES is set to
+lavapipe when unset.
 Standard library only."""
 import argparse
 import os
@@ -49,11 +53,14 @@ def main():
     ap.add_argument("--imgcmp", default=os.path.join(REPO, "build", "tests", "tp2-imgcmp"))
     ap.add_argument("--corpus", default=bench.DEFAULT_CORPUS)
     ap.add_argument("--bailout", help="tp2 --bailout for both builds (0: equal ray trees)")
+    ap.add_argument("--old-options", default="", help="options for the old build only")
+    ap.add_argument("--new-options", default="", help="options for the new build only")
     a = ap.parse_args()
-    options = ("--bailout", a.bailout) if a.bailout is not None else ()
+    common = ("--bailout", a.bailout) if a.bailout is not None else ()
+    options = {"old": (*common, *a.old_options.split()), "new": (*common, *a.new_options.split())}
     env = bench.tp2_env(True)
     scenes = a.scenes or bench.default_scenes(a.new, a.corpus)
-    print(f"old: {a.old}\nnew: {a.new}\noptions: {' '.join(options) or 'none'}\n"
+    print(f"old: {a.old} {' '.join(options['old'])}\nnew: {a.new} {' '.join(options['new'])}\n"
           f"runs: {a.runs} alternating after a warm-up; "
           f"load at start {os.getloadavg()[0]:.2f}")
     print(f"{'scene':28s} {'size':>10s} {'old wall':>9s} {'new wall':>9s} {'ratio':>6s} "
@@ -67,13 +74,13 @@ def main():
                 times = {"old": [], "new": []}
                 ok = True
                 for k in ("old", "new"):   # warm-up
-                    ok &= run(getattr(a, k), scene, outs[k], w, h, env, options)[2]
+                    ok &= run(getattr(a, k), scene, outs[k], w, h, env, options[k])[2]
                 if not ok:
                     print(f"{os.path.basename(scene):28s} {size:>10s} (a build failed or warned)")
                     continue
                 for i in range(a.runs):
                     for k in (("old", "new") if i % 2 == 0 else ("new", "old")):
-                        wall, rend, _ = run(getattr(a, k), scene, outs[k], w, h, env, options)
+                        wall, rend, _ = run(getattr(a, k), scene, outs[k], w, h, env, options[k])
                         times[k].append((wall, rend))
                 med = {k: (statistics.median(t[0] for t in v), statistics.median(t[1] for t in v))
                        for k, v in times.items()}
