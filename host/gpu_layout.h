@@ -33,6 +33,19 @@ struct gpu_walk {
     uint32_t signature;            /* the decisions so far (signature.glsl) */
 };
 
+/* What one dispatch covers: layout.glsl's push-constant block Tile (the
+ * field names are the GLSL members'): a band of rows from tile_origin (or
+ * the listed pixels of it), one sample, one pass of its walks. */
+struct gpu_tile {
+    int32_t tile_origin[2];
+    int32_t sample_index;
+    int32_t pass_rays;     /* rays each walk may trace in this pass */
+    int32_t walk_capacity; /* walks the walk buffers hold */
+    int32_t accept_cut;    /* 1: pass_rays is 1 and still cut: keep what there is */
+    int32_t tile_rows;     /* rows of the band */
+    int32_t list_length;   /* pixels in the pixel list */
+};
+
 #define TP2_LAYOUT(type, field, offset) \
     _Static_assert(offsetof(struct type, field) == (offset), #type "." #field)
 #define TP2_SIZE(type, size) \
@@ -131,6 +144,9 @@ TP2_LAYOUT(gpu_walk, where, 0);
 TP2_LAYOUT(gpu_walk, color, 16);
 TP2_LAYOUT(gpu_walk, signature, 32);
 TP2_SIZE(gpu_walk, 48);
+TP2_LAYOUT(gpu_tile, tile_origin, 0);
+TP2_LAYOUT(gpu_tile, list_length, 28);
+TP2_SIZE(gpu_tile, 32);
 
 #undef TP2_LAYOUT
 #undef TP2_SIZE

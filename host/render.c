@@ -94,17 +94,6 @@ struct renderer {
 #define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + TP2_COUNTER_COUNT)
 #define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
-/* What one dispatch covers (layout.glsl's Tile): a band of rows (or the
- * listed pixels of it), one sample per pixel, one pass of their walks. */
-struct tile_push {
-    int32_t origin[2];
-    int32_t sample;
-    int32_t pass_rays;
-    int32_t walk_capacity;
-    int32_t accept_cut;
-    int32_t rows;
-    int32_t list_length;
-};
 
 /* limit, or the environment variable name's value where it is a smaller
  * unsigned number: tests lower device limits this way to reach them with
@@ -301,7 +290,7 @@ static int create_layouts(struct renderer *r)
                                            &r->set_layout));
     VkPushConstantRange push = {
         .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
-        .size = sizeof(struct tile_push),
+        .size = sizeof(struct gpu_tile),
     };
     VkPipelineLayoutCreateInfo layout_info = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
@@ -468,7 +457,7 @@ struct pass_area {
 static int submit_pass(struct renderer *r, struct tracer *t, const struct pass_area *a,
                        int kind, uint32_t walks, bool clear)
 {
-    struct tile_push push = {{0, a->y}, a->sample, t->pass_rays, r->walk_capacity,
+    struct gpu_tile push = {{0, a->y}, a->sample, t->pass_rays, r->walk_capacity,
                              t->pass_rays == 1, a->rows, (int32_t)a->listed};
     if (need_pipeline(r, t, kind) != 0)
         return -1;

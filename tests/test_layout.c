@@ -61,6 +61,7 @@ enum {
     DEC_DESCRIPTOR_SET = 34,
     DEC_OFFSET = 35,
     SC_UNIFORM_CONSTANT = 0,
+    SC_PUSH_CONSTANT = 9,
     SC_STORAGE_BUFFER = 12,
     DIM_BUFFER = 5,
     SPV_MAGIC = 0x07230203,
@@ -209,15 +210,16 @@ static long spv_member_decoration(const struct spv *m, uint32_t id, uint32_t k,
     return -1;
 }
 
-/* The storage-buffer variable whose block type is named block, through
- * its pointer type; 0 if none. *count gets how many there are. */
-static uint32_t spv_find_buffer(const struct spv *m, const char *block,
-                                uint32_t *block_type, int *count)
+/* The variable of storage class `storage` whose block type is named
+ * block, through its pointer type; 0 if none. *count gets how many there
+ * are. */
+static uint32_t spv_find_variable(const struct spv *m, uint32_t storage, const char *block,
+                                  uint32_t *block_type, int *count)
 {
     uint32_t found = 0;
     *count = 0;
     SPV_FOR(m, i, op, wc) {
-        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != SC_STORAGE_BUFFER)
+        if (op != OP_VARIABLE || wc < 4 || m->w[i + 3] != storage)
             continue;
         size_t ptr = spv_def(m, m->w[i + 1]);
         if (spv_op(m, ptr) != OP_TYPE_POINTER || spv_wc(m, ptr) < 4)
@@ -230,6 +232,13 @@ static uint32_t spv_find_buffer(const struct spv *m, const char *block,
         }
     }
     return found;
+}
+
+/* The storage-buffer variable whose block type is named block. */
+static uint32_t spv_find_buffer(const struct spv *m, const char *block,
+                                uint32_t *block_type, int *count)
+{
+    return spv_find_variable(m, SC_STORAGE_BUFFER, block, block_type, count);
 }
 
 /* Scalar kinds a C field's elements may have. */
@@ -305,6 +314,8 @@ struct buffer {
 #define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color) F(T, signature)
 #define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info) F(T, doubt)
+#define TILE_FIELDS(F, T) F(T, tile_origin) F(T, sample_index) F(T, pass_rays) \
+    F(T, walk_capacity) F(T, accept_cut) F(T, tile_rows) F(T, list_length)
 
 #define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
 FIELDS(FRAME_FIELDS, gpu_frame_f)
@@ -318,6 +329,7 @@ FIELDS(FINISH_FIELDS, gpu_finish_d)
 FIELDS(WALK_FIELDS, gpu_walk)  /* no reals: the same in both */
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_f)
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_d)
+FIELDS(TILE_FIELDS, gpu_tile)
 
 #define BUFFER(block, glsl, T, binding, array)                                \
     {block, glsl, #T, binding, array, sizeof(struct T), _Alignof(struct T),   \
@@ -384,6 +396,19 @@ static void check_struct(const struct spv *m, uint32_t id,
         expect(size == f->size && kind == f->kind, "%s: " "%s.%s: %zu bytes of kind '%c'; C field %zu bytes of kind '%c'", m->label,
               b->glsl, name, size, kind, f->size, f->kind);
     }
+}
+
+/* The push-constant block Tile against struct gpu_tile, member by member. */
+static void check_push_constants(const struct spv *m)
+{
+    static const struct buffer tile = BUFFER("Tile", "Tile", gpu_tile, -1, 0);
+    uint32_t block = 0;
+    int count = 0;
+    spv_find_variable(m, SC_PUSH_CONSTANT, "Tile", &block, &count);
+    expect(count == 1, "%s: %d push-constant blocks named Tile, want 1", m->label, count);
+    if (count == 1)
+        check_struct(m, block, &tile);
+    check_c_table(m->label, &tile);
 }
 
 /* Checks one buffer: variable, binding, set, block, array stride, struct. */
@@ -600,6 +625,7 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
     check_plain_array(m, "PixelListBuf", TP2_BINDING_PIXEL_LIST, sizeof(uint32_t), KIND_U32,
                       "uint");
     check_stats(m);
+    check_push_constants(m);
     check_texel_buffer(m, "object_texels", TP2_BINDING_OBJECTS);
     check_texel_buffer(m, "node_texels", TP2_BINDING_BVH);
     check_binding_set(m);
