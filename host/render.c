@@ -73,8 +73,7 @@ struct renderer {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
     VkPipelineCache cache;
-    struct tracer band, retrace;
-    bool retracing; /* --precision auto where the device has shaderFloat64 */
+    struct tracer band, retrace; /* retrace in use where band.signatures */
     struct scene_features features;
     bool count_rays;
     double pipeline_time; /* seconds spent making pipelines */
@@ -88,6 +87,13 @@ struct renderer {
     bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
     int walk_capacity;
 };
+
+/* Whether --precision auto's retrace is on: the band pass records
+ * signatures exactly then. */
+static bool retracing(const struct renderer *r)
+{
+    return r->band.signatures;
+}
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
  * then the TP2_COUNTER_*s. */
@@ -149,11 +155,11 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
 {
     for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
         if (upload(r, p, i, &r->buffers[i]) != 0 ||
-            (r->retracing && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
+            (retracing(r) && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
             return -1;
     VkDeviceSize pixels = (VkDeviceSize)r->band_rows * width;
     VkDeviceSize walks = (VkDeviceSize)r->walk_capacity;
-    VkDeviceSize ray = r->band.use_double || r->retracing ? sizeof(struct gpu_walk_ray_d)
+    VkDeviceSize ray = r->band.use_double || retracing(r) ? sizeof(struct gpu_walk_ray_d)
                                                          : sizeof(struct gpu_walk_ray_f);
     VkDeviceSize words = sizeof(uint32_t);
     if (vk_buffer_create(&r->vk, pixels * TP2_PIXEL_BYTES, true,
@@ -165,15 +171,15 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
                          &r->buffers[TP2_BINDING_WALKS]) != 0 ||
         vk_buffer_create(&r->vk, walks * TP2_WALK_RAYS * ray, false,
                          &r->buffers[TP2_BINDING_WALK_RAYS]) != 0 ||
-        vk_buffer_create(&r->vk, (r->retracing ? pixels + width : 1) * words, true,
+        vk_buffer_create(&r->vk, (retracing(r) ? pixels + width : 1) * words, true,
                          &r->buffers[TP2_BINDING_SIGNATURES]) != 0 ||
-        vk_buffer_create(&r->vk, (r->retracing ? pixels : 1) * words, false,
+        vk_buffer_create(&r->vk, (retracing(r) ? pixels : 1) * words, false,
                          &r->buffers[TP2_BINDING_PIXEL_LIST]) != 0)
         return -1;
     memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
     r->host_band = malloc((size_t)(pixels * TP2_PIXEL_BYTES));
-    r->last_signatures = r->retracing ? malloc((size_t)width * sizeof(uint32_t)) : NULL;
-    if (!r->host_band || (r->retracing && !r->last_signatures)) {
+    r->last_signatures = retracing(r) ? malloc((size_t)width * sizeof(uint32_t)) : NULL;
+    if (!r->host_band || (retracing(r) && !r->last_signatures)) {
         fputs("tp2: out of memory for a band of the image\n", stderr);
         return -1;
     }
@@ -266,7 +272,7 @@ static int tracers(struct renderer *r, struct tracer *passes[2])
 {
     passes[0] = &r->band;
     passes[1] = &r->retrace;
-    return r->retracing ? 2 : 1;
+    return retracing(r) ? 2 : 1;
 }
 
 /* The descriptor set layout, the pipeline layout, and each pass's shader
@@ -675,7 +681,7 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
             rc = render_band_sample(r, &r->band, &a, &w, &st->passes);
             progress_update(&bar, (double)(band * samples + s + 1) / ((double)samples * bands));
         }
-        if (rc == 0 && r->retracing)
+        if (rc == 0 && retracing(r))
             rc = retrace_band(r, width, height, y, n, samples, st);
         if (rc == 0) { /* the device may reuse its buffer once this is copied */
             double t1 = clock_seconds();
@@ -840,14 +846,14 @@ static void describe_precision(const struct renderer *r, const struct render_opt
                                bool twin_fits, struct render_stats *st)
 {
     const char *what = r->band.use_double ? "double" : "float";
-    if (r->retracing)
+    if (retracing(r))
         what = "auto (float, then pixels on decision boundaries again in double)";
     else if (opt->retrace && !r->vk.float64)
         what = "float (auto: the device has no shaderFloat64)";
     else if (opt->retrace && !twin_fits)
         what = "float (auto: the double scene does not fit the device)";
     snprintf(st->precision, sizeof st->precision, "%s", what);
-    st->retracing = r->retracing;
+    st->retracing = retracing(r);
 }
 
 int render_scene(const struct scene *s, const struct render_options *opt,
@@ -904,8 +910,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     double t_buffers = clock_seconds();
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     r.loop_guard = needs_loop_guard(&r.vk);
-    r.retracing = twin_fits && r.vk.float64;
-    r.band = (struct tracer){.use_double = opt->use_double, .signatures = r.retracing};
+    r.band = (struct tracer){.use_double = opt->use_double,
+                             .signatures = twin_fits && r.vk.float64};
     r.retrace = (struct tracer){.use_double = true, .pixel_list = true};
     r.band.pass_rays = pass_rays(r.loop_guard, &r.band.walking);
     r.retrace.pass_rays = pass_rays(r.loop_guard, &r.retrace.walking);

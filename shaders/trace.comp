@@ -242,6 +242,13 @@ void camera_ray(real x, real y, vec2 lens_sample, out rvec3 origin, out rvec3 di
     }
 }
 
+// This invocation's place in a one-dimensional dispatch (over saved walks
+// or a pixel list).
+int flat_invocation()
+{
+    return int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
+}
+
 // Whether lavapipe cut this invocation short (see TP2_CANARY_STEPS).
 bool was_cut()
 {
@@ -279,7 +286,7 @@ void main()
     Ray pending[STACK_SIZE];
     uvec2 pending_doubt[STACK_SIZE]; // under SIGNATURES only, as halves
     if (WALK == TP2_WALK_CONTINUE) {
-        entry = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
+        entry = flat_invocation();
         if (entry >= min(int(counters[TP2_COUNTER_WALKS]), walk_capacity))
             return;
         Walk saved = walks[entry];
@@ -296,8 +303,7 @@ void main()
         }
     } else {
         if (PIXEL_LIST) { // the listed pixels of the band, one per invocation
-            int at = int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) +
-                     int(gl_LocalInvocationIndex);
+            int at = flat_invocation();
             if (at >= list_length)
                 return;
             int listed = int(pixel_list[at]);
@@ -343,7 +349,8 @@ void main()
         }
         if (children > 0) {
             w.ray = first;
-            w.doubt = first_doubt;
+            if (SIGNATURES)
+                w.doubt = first_doubt;
         } else if (w.sp > 0) {
             w.ray = pending[--w.sp];
             if (SIGNATURES)
@@ -386,9 +393,11 @@ void main()
         }
         walks[entry] = Walk(ivec4(pixel, w.sp, w.traced), vec4(w.color, w.budget), w.sig);
         int base = entry * TP2_WALK_RAYS;
-        saved_rays[base] = packed_ray(w.ray, w.doubt);
-        for (int k = 0; k < w.sp; ++k)
-            saved_rays[base + 1 + k] = packed_ray(pending[k], SIGNATURES ? unpacked_doubt(pending_doubt[k]) : vec4(0.0));
+        saved_rays[base] = packed_ray(w.ray, SIGNATURES ? w.doubt : vec4(0.0));
+        for (int k = 0; k < w.sp; ++k) {
+            vec4 doubt = SIGNATURES ? unpacked_doubt(pending_doubt[k]) : vec4(0.0);
+            saved_rays[base + 1 + k] = packed_ray(pending[k], doubt);
+        }
         atomicAdd(counters[TP2_COUNTER_UNFINISHED], 1u);
     }
     if (COUNT_RAYS)
