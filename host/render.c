@@ -13,6 +13,7 @@
 #include "progress.h"
 #include "retrace.h"
 #include "scene_pack.h"
+#include "spirv_fused.h"
 #include "tp2_shared.h"
 #include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
@@ -245,6 +246,14 @@ static bool curved_kinds(const struct scene_features *f)
                          1 << TP2_SHAPE_TORUS | 1 << TP2_SHAPE_QUADRIC)) != 0;
 }
 
+/* Whether TP2_FUSED=1 asks for the shaders to round as a device that
+ * fuses multiply-adds (spirv_fused.h; for tests). */
+static bool fused_requested(void)
+{
+    const char *env = getenv("TP2_FUSED");
+    return env && strcmp(env, "1") == 0;
+}
+
 /* The SPIR-V build for the precision and kinds (CMakeLists.txt). */
 static const uint32_t *spirv_code(bool use_double, bool curved)
 {
@@ -309,14 +318,35 @@ static int create_layouts(struct renderer *r)
                                       &r->pipeline_layout));
     bool curved = curved_kinds(&r->features);
     struct tracer *passes[2];
+    bool fused = fused_requested();
+    if (fused && !r->vk.float64) {
+        fprintf(stderr, "tp2: TP2_FUSED=1 needs a device with shaderFloat64\n");
+        return -1;
+    }
     for (int k = 0, n = tracers(r, passes); k < n; k++) {
         struct tracer *t = passes[k];
+        const uint32_t *code = spirv_code(t->use_double, curved);
+        size_t words = spirv_size(t->use_double, curved) / sizeof *code;
+        size_t sites = 0;
+        uint32_t *rewritten = fused ? spirv_fused(code, words, &words, &sites) : NULL;
+        if (fused && !rewritten) {
+            fprintf(stderr, "tp2: out of memory rewriting the shader for TP2_FUSED\n");
+            return -1;
+        }
+        if (fused)
+            fprintf(stderr, "tp2: TP2_FUSED: %zu operations of the %s shader fused\n", sites,
+                    t->use_double ? "double" : "float");
         VkShaderModuleCreateInfo module_info = {
             .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-            .codeSize = spirv_size(t->use_double, curved),
-            .pCode = spirv_code(t->use_double, curved),
+            .codeSize = words * sizeof *code,
+            .pCode = rewritten ? rewritten : code,
         };
-        TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &t->shader));
+        VkResult made = vkCreateShaderModule(r->vk.device, &module_info, NULL, &t->shader);
+        free(rewritten);
+        if (made != VK_SUCCESS) {
+            vk_report("vkCreateShaderModule", made, __FILE__, __LINE__);
+            return -1;
+        }
     }
     return 0;
 }
@@ -864,7 +894,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     struct vkc_options vk_opt = {
         .device_index = opt->device_index,
         .need_float64 = opt->use_double && !opt->double_where,
-        .want_float64 = opt->use_double || opt->retrace,
+        .want_float64 = opt->use_double || opt->retrace || fused_requested(),
         .validate = opt->validate,
     };
     struct pack_options pack_opt = {
