@@ -9,6 +9,8 @@ struct Hit {
     real t;
     int object; // -1: none
     int part;   // which part of it (a face, a cap): shapes.glsl
+    real next;  // under SIGNATURES: the nearest other crossing tested (signature.glsl),
+    int next_object; // and its object
 };
 
 // The surface a ray starts on, which rounding must not let it hit again
@@ -67,7 +69,7 @@ rvec3 safe_inverse(rvec3 d)
 // trace_step), and no loop runs inside another.
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
 {
-    Hit h = Hit(tmax, -1, 0);
+    Hit h = Hit(tmax, -1, 0, tmax, -1);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     rvec3 inv_d = USE_BVH ? safe_inverse(d) : d;
@@ -89,9 +91,12 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
             int part;
             real t = hit_object(i, o, d, i == start.object, start.inward, part);
             if (t < h.t) {
-                h = Hit(t, i, part);
+                h = Hit(t, i, part, h.t, h.object);
                 if (any_hit)
                     break;
+            } else if (SIGNATURES && t < h.next) {
+                h.next = t;
+                h.next_object = i;
             }
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out

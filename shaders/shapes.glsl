@@ -596,6 +596,14 @@ float hit_rounding(int i)
     return USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS ? 256.0 : 1.0;
 }
 
+// Whether object i is flat wherever a ray meets it (a plane or faces).
+bool flat_kind(int i)
+{
+    int kind = shape_of(i);
+    return kind == TP2_SHAPE_PLANE || kind == TP2_SHAPE_POLYHEDRON || kind == TP2_SHAPE_BOX ||
+           kind == TP2_SHAPE_TRIANGLE;
+}
+
 // Whether a ray through object i's surface goes into an inside (a
 // triangle has none: transmitted rays go on unbent).
 bool has_inside(int i)

@@ -71,6 +71,21 @@ HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
     return h;
 }
 
+// Whether the nearest crossing may not be the nearest: the next one
+// tested lies `margin` further along the ray,
+// within what the two distances may be off: each has the fresh rounding
+// of its intersection, and the ray's own doubt moves them apart by up to
+// its width times the grazing spread. Two surfaces that cross, or nearly
+// touch, make this margin tiny along the curve where they meet; where
+// float cannot tell them apart at all (margin 0) and both are flat, they
+// are faces that coincide (a box on the floor), which double cannot tell
+// apart either: the same object wins in both.
+bool nearer_unsure(float margin, HitDoubt h, float t, float scale, bool both_flat)
+{
+    return margin < 2.0 * ROUNDING * (scale + t) + h.pixels * h.width_along &&
+           (margin > 0.0 || !both_flat);
+}
+
 // How far, in pixels, boundaries beyond the ray's origin may move.
 float far_pixels(vec4 doubt)
 {

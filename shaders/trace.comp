@@ -114,12 +114,16 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
                               : vec2(0.0);
     curving = entering ? curving : -curving.yx;
     float bend = max(abs(curving.x), abs(curving.y));
-    HitDoubt hd = doubt_at(doubt, float(h.t),
-                           hit_rounding(h.object) * float(scale + max_abs(ray.origin)), cosine, bend);
+    float sizes = hit_rounding(h.object) * float(scale + max_abs(ray.origin));
+    HitDoubt hd = doubt_at(doubt, float(h.t), sizes, cosine, bend);
     seen(sig, max(hd.pixels, far_pixels(doubt)), stake);
     decided(sig, uint(h.part));
     if (at_stake(stake) && cosine < hd.angle) // entering or leaving
         sig |= UNSURE;
+    if (at_stake(stake) && nearer_unsure(float(h.next - h.t), hd, float(h.t), sizes,
+                                          h.next_object >= 0 && flat_kind(h.object) &&
+                                              flat_kind(h.next_object)))
+        sig |= UNSURE; // which of two crossings is nearer
     rvec3 nf = entering ? n : -n;
     rvec3 offset = nf * (scale * TP2_REL_EPS);
     // Rays leaving on the incoming side start here, going along nf: into
