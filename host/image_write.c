@@ -216,6 +216,27 @@ static void quantize_row(const float *rgba, int width, unsigned char *out)
             out[x * 3 + c] = image_quantize(rgba[x * 4 + c]);
 }
 
+/* Rows handed to the writer: floats (width * 4 per row) or 8-bit values
+ * already quantized (width words r | g << 8 | b << 16 per row). */
+struct row_source {
+    const float *rgba;
+    const uint32_t *words;
+};
+
+/* Row i of src as 8-bit RGB. */
+static void rgb_row(const struct image_writer *w, struct row_source src, int i,
+                    unsigned char *out)
+{
+    if (!src.words) {
+        quantize_row(src.rgba + (size_t)i * w->width * 4, w->width, out);
+        return;
+    }
+    const uint32_t *row = src.words + (size_t)i * w->width;
+    for (int x = 0; x < w->width; x++)
+        for (int c = 0; c < 3; c++)
+            out[x * 3 + c] = (unsigned char)(row[x] >> (8 * c));
+}
+
 /* PFM stores rows bottom to top: each row goes to its own offset. */
 static int pfm_row(struct image_writer *w, const float *rgba, int y)
 {
@@ -227,28 +248,27 @@ static int pfm_row(struct image_writer *w, const float *rgba, int y)
     return pwrite_all(w->fd, out, bytes, at);
 }
 
-static int png_rows(struct image_writer *w, const float *rgba, int rows)
+static int png_rows(struct image_writer *w, struct row_source src, int rows)
 {
     if (setjmp(png_jmpbuf(w->png)))
         return -1;
     for (int i = 0; i < rows; i++) {
-        quantize_row(rgba + (size_t)i * w->width * 4, w->width, w->row);
+        rgb_row(w, src, i, w->row);
         png_write_row(w->png, w->row);
     }
     return 0;
 }
 
-static int encode_rows(struct image_writer *w, const float *rgba, int rows)
+static int encode_rows(struct image_writer *w, struct row_source src, int rows)
 {
     if (w->format == IMAGE_PNG)
-        return png_rows(w, rgba, rows);
+        return png_rows(w, src, rows);
     for (int i = 0; i < rows; i++) {
-        const float *src = rgba + (size_t)i * w->width * 4;
         if (w->format == IMAGE_PFM) {
-            if (pfm_row(w, src, w->next_row + i) != 0)
+            if (pfm_row(w, src.rgba + (size_t)i * w->width * 4, w->next_row + i) != 0)
                 return -1;
         } else {
-            quantize_row(src, w->width, w->row);
+            rgb_row(w, src, i, w->row);
             if (fwrite(w->row, 3, (size_t)w->width, w->f) != (size_t)w->width)
                 return -1;
         }
@@ -256,15 +276,27 @@ static int encode_rows(struct image_writer *w, const float *rgba, int rows)
     return 0;
 }
 
-int image_writer_rows(struct image_writer *w, const float *rgba, int rows)
+static int write_rows(struct image_writer *w, struct row_source src, int rows)
 {
     if (rows < 0 || rows > w->height - w->next_row)
         return report(w->path, "more rows than the image has");
+    if (src.words && w->format == IMAGE_PFM)
+        return report(w->path, "8-bit rows for a PFM file");
     errno = 0;
-    if (encode_rows(w, rgba, rows) != 0)
+    if (encode_rows(w, src, rows) != 0)
         return report_errno(w->path, w->error ? w->error : errno);
     w->next_row += rows;
     return 0;
+}
+
+int image_writer_rows(struct image_writer *w, const float *rgba, int rows)
+{
+    return write_rows(w, (struct row_source){rgba, NULL}, rows);
+}
+
+int image_writer_rows_rgba8(struct image_writer *w, const uint32_t *words, int rows)
+{
+    return write_rows(w, (struct row_source){NULL, words}, rows);
 }
 
 static int png_end(struct image_writer *w)

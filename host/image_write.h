@@ -8,6 +8,8 @@
 #ifndef TP2_IMAGE_WRITE_H
 #define TP2_IMAGE_WRITE_H
 
+#include <stdint.h>
+
 enum image_format { IMAGE_PPM, IMAGE_PNG, IMAGE_PFM, IMAGE_UNKNOWN };
 
 /* The format named by path's extension (case-insensitive). */
@@ -32,6 +34,11 @@ struct image_writer *image_writer_open(const char *path, enum image_format forma
  * ignored), in order from the top. Returns 0, or -1 after a message; then
  * only image_writer_abort remains to be called. */
 int image_writer_rows(struct image_writer *w, const float *rgba, int rows);
+
+/* The same for rows of 8-bit values already quantized (width words
+ * r | g << 8 | b << 16 each; the renderer's, quantized on the device),
+ * into a PPM or PNG file. */
+int image_writer_rows_rgba8(struct image_writer *w, const uint32_t *words, int rows);
 
 /* After all rows: completes and closes the file, gives it the mode of the
  * output it replaces (a new file: 0666 & ~umask), renames it over the

@@ -106,7 +106,8 @@ static void print_stats(const struct render_stats *st, double parse, double writ
                 100.0 * (double)st->retraced / ((double)width * height));
     fprintf(stderr, "tp2: passes     %8u (walks of at most %d rays each)\n", st->passes,
             st->pass_rays);
-    fprintf(stderr, "tp2: readback   %8.3f s (copying finished bands from the device)\n",
+    fprintf(stderr, "tp2: readback   %8.3f s (finished bands as the file needs them, "
+                    "copied from the device)\n",
             st->readback);
     fprintf(stderr, "tp2: write      %8.3f s (encoding and writing rows while the next "
                     "band renders, then closing the file)\n", write);
@@ -118,11 +119,18 @@ static void print_stats(const struct render_stats *st, double parse, double writ
             (unsigned long long)total, st->render > 0 ? total / st->render * 1e-6 : 0.0);
 }
 
-/* render_rows_fn: the rows go straight to the file. */
-static int write_rows(void *writer, const float *rgba, int first, int count)
+/* render_rows_fn: the rows go straight to the file, as 8-bit values
+ * quantized on the device unless the file is PFM. */
+static int write_rows(void *writer, const void *rows, int first, int count)
 {
     (void)first; /* they come in order */
-    return image_writer_rows(writer, rgba, count);
+    return image_writer_rows_rgba8(writer, rows, count);
+}
+
+static int write_float_rows(void *writer, const void *rows, int first, int count)
+{
+    (void)first;
+    return image_writer_rows(writer, rows, count);
 }
 
 /* Opens the output first, so that an unwritable one is reported before
@@ -152,6 +160,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
         .count_rays = c->stats,
         .progress = !c->quiet,
         .quiet = c->quiet,
+        .bytes = image_format_of(c->outfile) != IMAGE_PFM,
     };
     struct render_stats stats;
     image_size(c, s, &opt.width, &opt.height);
@@ -161,7 +170,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
         free(note);
         return EXIT_FAILURE;
     }
-    int rc = render_scene(s, &opt, write_rows, w, &stats);
+    int rc = render_scene(s, &opt, opt.bytes ? write_rows : write_float_rows, w, &stats);
     free(note);
     if (rc == 0 && vkc_validation_message_count() > 0) {
         fprintf(stderr, "tp2: %u validation message(s); no image written\n",

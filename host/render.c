@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "finish_spv.h"
 #include "gpu_layout.h"
 #include "pipeline_cache.h"
 #include "progress.h"
@@ -83,7 +84,11 @@ struct renderer {
     VkCommandBuffer cmd;
     VkFence fence;
     int band_rows;    /* rows per band; the band buffer holds this many */
-    float *host_band; /* the last finished band, copied out for the writer */
+    bool bytes;       /* the file takes 8-bit values (render_options.bytes) */
+    VkShaderModule finish_shader; /* finish.comp: the band as the file needs it */
+    VkPipeline finish;
+    int finish_rc;    /* create_finish's, from finish_job */
+    unsigned char *host_band; /* the last finished band, copied out for the writer */
     uint32_t *last_signatures; /* the previous band's last row's (retracing) */
     bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
     int walk_capacity;
@@ -146,6 +151,13 @@ static int upload(const struct renderer *r, const struct packed_scene *p, int i,
     return 0;
 }
 
+/* Bytes per pixel the output buffer and the host's band hold: one RGBA8
+ * word, or four floats (finish.comp). */
+static VkDeviceSize output_bytes(const struct renderer *r)
+{
+    return r->bytes ? sizeof(uint32_t) : TP2_PIXEL_BYTES;
+}
+
 /* The scene's buffers, filled (and the double scene's, when retracing);
  * the band buffer (band_rows rows of width), its host copy, the stats
  * buffer, the walks' buffers (on CPU devices; one element elsewhere, where
@@ -163,8 +175,12 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
     VkDeviceSize ray = r->band.use_double || retracing(r) ? sizeof(struct gpu_walk_ray_d)
                                                          : sizeof(struct gpu_walk_ray_f);
     VkDeviceSize words = sizeof(uint32_t);
-    if (vk_buffer_create(&r->vk, pixels * TP2_PIXEL_BYTES, true,
+    /* The band's running sums stay on the device; only the output buffer,
+     * what the file needs, is read back (finish.comp). */
+    if (vk_buffer_create(&r->vk, pixels * TP2_PIXEL_BYTES, false,
                          &r->buffers[TP2_BINDING_IMAGE]) != 0 ||
+        vk_buffer_create(&r->vk, pixels * output_bytes(r), true,
+                         &r->buffers[TP2_BINDING_OUTPUT]) != 0 ||
         vk_buffer_create(&r->vk, TP2_STATS_BYTES, true, &r->buffers[TP2_BINDING_STATS]) != 0 ||
         vk_buffer_create(&r->vk, (r->loop_guard ? pixels + width : 1) * words, false,
                          &r->buffers[TP2_BINDING_STARTED]) != 0 ||
@@ -178,7 +194,7 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
                          &r->buffers[TP2_BINDING_PIXEL_LIST]) != 0)
         return -1;
     memset(r->buffers[TP2_BINDING_STATS].mapped, 0, TP2_STATS_BYTES);
-    r->host_band = malloc((size_t)(pixels * TP2_PIXEL_BYTES));
+    r->host_band = malloc((size_t)(pixels * output_bytes(r)));
     r->last_signatures = retracing(r) ? malloc((size_t)width * sizeof(uint32_t)) : NULL;
     if (!r->host_band || (retracing(r) && !r->last_signatures)) {
         fputs("tp2: out of memory for a band of the image\n", stderr);
@@ -351,6 +367,23 @@ static int create_layouts(struct renderer *r)
     return 0;
 }
 
+/* A compute pipeline of module's main with the given constants. */
+static VkComputePipelineCreateInfo pipeline_info(const struct renderer *r, VkShaderModule module,
+                                                 const VkSpecializationInfo *spec)
+{
+    return (VkComputePipelineCreateInfo){
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+            .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+            .module = module,
+            .pName = "main",
+            .pSpecializationInfo = spec,
+        },
+        .layout = r->pipeline_layout,
+    };
+}
+
 /* Pass t's pipeline for walks of kind `walk` (TP2_WALK_*), made when
  * first needed: most scenes only ever need TP2_WALK_WHOLE. */
 static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
@@ -367,17 +400,7 @@ static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
         .dataSize = sizeof values,
         .pData = values,
     };
-    VkComputePipelineCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-        .stage = {
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-            .stage = VK_SHADER_STAGE_COMPUTE_BIT,
-            .module = t->shader,
-            .pName = "main",
-            .pSpecializationInfo = &spec,
-        },
-        .layout = r->pipeline_layout,
-    };
+    VkComputePipelineCreateInfo info = pipeline_info(r, t->shader, &spec);
     if (pipeline_cache_load(&r->vk, &r->cache) != 0)
         return -1;
     TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, r->cache, 1, &info, NULL,
@@ -386,6 +409,38 @@ static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
     r->cache = VK_NULL_HANDLE;
     r->pipeline_time += clock_seconds() - t0;
     return 0;
+}
+
+/* The finish pipeline (finish.comp), for 8-bit values or floats. */
+static int create_finish(struct renderer *r)
+{
+    VkShaderModuleCreateInfo module_info = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = sizeof tp2_finish,
+        .pCode = tp2_finish,
+    };
+    TP2_VK_TRY(vkCreateShaderModule(r->vk.device, &module_info, NULL, &r->finish_shader));
+    VkBool32 bytes = r->bytes;
+    VkSpecializationMapEntry entry = {TP2_FINISH_SPEC_BYTES, 0, sizeof bytes};
+    VkSpecializationInfo spec = {
+        .mapEntryCount = 1,
+        .pMapEntries = &entry,
+        .dataSize = sizeof bytes,
+        .pData = &bytes,
+    };
+    VkComputePipelineCreateInfo info = pipeline_info(r, r->finish_shader, &spec);
+    TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, VK_NULL_HANDLE, 1, &info, NULL,
+                                        &r->finish));
+    return 0;
+}
+
+/* create_finish on a thread of its own, beside the trace pipeline's much
+ * longer compile (on lavapipe it would add 8-10 ms to every start). */
+static void *finish_job(void *arg)
+{
+    struct renderer *r = arg;
+    r->finish_rc = create_finish(r);
+    return NULL;
 }
 
 /* Pass t's descriptor set: every binding the band pass's buffer, but where
@@ -485,6 +540,32 @@ struct pass_area {
     uint32_t listed;
 };
 
+/* Starts recording r's one command buffer afresh. */
+static int begin_commands(struct renderer *r)
+{
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    TP2_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
+    TP2_VK_TRY(vkBeginCommandBuffer(r->cmd, &begin));
+    return 0;
+}
+
+/* Ends the command buffer and submits it; r's fence signals when done. */
+static int submit_commands(struct renderer *r)
+{
+    TP2_VK_TRY(vkEndCommandBuffer(r->cmd));
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
+        .commandBufferCount = 1,
+        .pCommandBuffers = &r->cmd,
+    };
+    TP2_VK_TRY(vkResetFences(r->vk.device, 1, &r->fence));
+    TP2_VK_TRY(vkQueueSubmit(r->vk.queue, 1, &submit, r->fence));
+    return 0;
+}
+
 /* Records and submits one pass of t (TP2_WALK_*) of the area's walks: a
  * whole-tree or start dispatch covers the band (and the row after it,
  * for its signatures) or the listed pixels, a continue one the `walks`
@@ -497,12 +578,8 @@ static int submit_pass(struct renderer *r, struct tracer *t, const struct pass_a
                              t->pass_rays == 1, a->rows, (int32_t)a->listed};
     if (need_pipeline(r, t, kind) != 0)
         return -1;
-    VkCommandBufferBeginInfo begin = {
-        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
-    };
-    TP2_VK_TRY(vkResetCommandBuffer(r->cmd, 0));
-    TP2_VK_TRY(vkBeginCommandBuffer(r->cmd, &begin));
+    if (begin_commands(r) != 0)
+        return -1;
     if (clear && r->loop_guard) {
         vkCmdFillBuffer(r->cmd, r->buffers[TP2_BINDING_STARTED].buffer, 0, VK_WHOLE_SIZE, 0);
         VkMemoryBarrier cleared = {
@@ -541,15 +618,7 @@ static int submit_pass(struct renderer *r, struct tracer *t, const struct pass_a
                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT |
                              VK_PIPELINE_STAGE_TRANSFER_BIT,
                          0, 1, &barrier, 0, NULL, 0, NULL);
-    TP2_VK_TRY(vkEndCommandBuffer(r->cmd));
-    VkSubmitInfo submit = {
-        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO,
-        .commandBufferCount = 1,
-        .pCommandBuffers = &r->cmd,
-    };
-    TP2_VK_TRY(vkResetFences(r->vk.device, 1, &r->fence));
-    TP2_VK_TRY(vkQueueSubmit(r->vk.queue, 1, &submit, r->fence));
-    return 0;
+    return submit_commands(r);
 }
 
 static int wait_pass(struct renderer *r)
@@ -592,8 +661,8 @@ static int hand_on(struct renderer *r, struct host_band *b, int upto, int width,
     if (upto <= b->done)
         return 0;
     double t0 = clock_seconds();
-    int rc = on_rows(user, r->host_band + (size_t)b->done * width * 4, b->y + b->done,
-                     upto - b->done);
+    int rc = on_rows(user, r->host_band + (size_t)b->done * width * output_bytes(r),
+                     b->y + b->done, upto - b->done);
     *time += clock_seconds() - t0;
     b->done = upto;
     return rc;
@@ -682,6 +751,32 @@ static int retrace_band(struct renderer *r, int width, int height, int y, int ro
     return 0;
 }
 
+/* The finished band's first `pixels` pixels into the output buffer as the
+ * file needs them (finish.comp), waited for. */
+static int finish_band(struct renderer *r, int pixels)
+{
+    struct gpu_tile push = {.list_length = pixels};
+    if (begin_commands(r) != 0)
+        return -1;
+    vkCmdBindPipeline(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->finish);
+    vkCmdBindDescriptorSets(r->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r->pipeline_layout, 0, 1,
+                            &r->band.set, 0, NULL);
+    vkCmdPushConstants(r->cmd, r->pipeline_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                       &push);
+    vkCmdDispatch(r->cmd, ((uint32_t)pixels + TP2_FINISH_GROUP - 1) / TP2_FINISH_GROUP, 1, 1);
+    /* The host reads the output after the fence; the next band's first
+     * pass overwrites the pixels only after this read them. */
+    VkMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+        .dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+    };
+    vkCmdPipelineBarrier(r->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+                         &barrier, 0, NULL, 0, NULL);
+    return submit_commands(r) != 0 ? -1 : wait_pass(r);
+}
+
 /* Renders every sample of every pixel, band by band, one dispatch per band
  * and sample, each adding its sample's share to the pixels. One sample per
  * dispatch also keeps each invocation's work bounded: lavapipe ends a
@@ -713,10 +808,12 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
         }
         if (rc == 0 && retracing(r))
             rc = retrace_band(r, width, height, y, n, samples, st);
-        if (rc == 0) { /* the device may reuse its buffer once this is copied */
+        if (rc == 0) { /* the device may reuse its buffers once this is copied */
             double t1 = clock_seconds();
-            memcpy(r->host_band, r->buffers[TP2_BINDING_IMAGE].mapped,
-                   (size_t)n * width * TP2_PIXEL_BYTES);
+            rc = finish_band(r, n * width);
+            if (rc == 0)
+                memcpy(r->host_band, r->buffers[TP2_BINDING_OUTPUT].mapped,
+                       (size_t)n * width * output_bytes(r));
             st->readback += clock_seconds() - t1;
             held = (struct host_band){y, n, 0};
         }
@@ -744,6 +841,8 @@ static void renderer_destroy(struct renderer *r)
                 vkDestroyPipeline(d, passes[p]->pipelines[k], NULL);
             vkDestroyShaderModule(d, passes[p]->shader, NULL);
         }
+        vkDestroyPipeline(d, r->finish, NULL);
+        vkDestroyShaderModule(d, r->finish_shader, NULL);
         vkDestroyPipelineCache(d, r->cache, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
         vkDestroyDescriptorSetLayout(d, r->set_layout, NULL);
@@ -939,6 +1038,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     bool twin_fits = opt->retrace && check_scene_fits(&r.vk, &twin, true, true) == 0;
     double t_buffers = clock_seconds();
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
+    r.bytes = opt->bytes;
     r.loop_guard = needs_loop_guard(&r.vk);
     r.band = (struct tracer){.use_double = opt->use_double,
                              .signatures = twin_fits && r.vk.float64};
@@ -954,8 +1054,17 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     r.count_rays = opt->count_rays;
     /* The retrace pass's pipelines, like the walks', are made when first
      * needed: a scene where no pixel needs double never makes them. */
-    if (create_layouts(&r) != 0 || need_pipeline(&r, &r.band, TP2_WALK_WHOLE) != 0 ||
-        create_descriptors(&r) != 0 || create_commands(&r) != 0)
+    if (create_layouts(&r) != 0)
+        goto done;
+    pthread_t finisher;
+    bool finishing = pthread_create(&finisher, NULL, finish_job, &r) == 0;
+    if (!finishing)
+        finish_job(&r);
+    int band_rc = need_pipeline(&r, &r.band, TP2_WALK_WHOLE);
+    if (finishing)
+        pthread_join(finisher, NULL);
+    if (band_rc != 0 || r.finish_rc != 0 || create_descriptors(&r) != 0 ||
+        create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
     double made = r.pipeline_time;

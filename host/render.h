@@ -27,6 +27,8 @@ struct render_options {
     bool count_rays;   /* fill render_stats.rays (costs a little speed) */
     bool progress;     /* draw a progress bar on stderr after a second */
     bool quiet;        /* no note about the precision chosen */
+    bool bytes;        /* rows as 8-bit values, quantized on the device (the
+                        * file is PPM or PNG), else as floats (PFM) */
 };
 
 /* Wall times of the phases, in seconds, and rays traced by kind. Bands
@@ -48,11 +50,13 @@ struct render_stats {
     char device_name[256];
 };
 
-/* Receives the image as it is rendered: rows [first, first + count), each
- * width * 4 linear floats (rgb, then a junk alpha), rows top to bottom,
- * every row once and in order. Returns 0, or -1 to stop the render (after
- * printing its own message). */
-typedef int (*render_rows_fn)(void *user, const float *rgba, int first, int count);
+/* Receives the image as it is rendered: rows [first, first + count), rows
+ * top to bottom, every row once and in order. Each row is width words
+ * r | g << 8 | b << 16 of 8-bit values (image_quantize's, computed on the
+ * device) under render_options.bytes, else width * 4 linear floats (rgb,
+ * then a junk alpha). Returns 0, or -1 to stop the render (after printing
+ * its own message). */
+typedef int (*render_rows_fn)(void *user, const void *rows, int first, int count);
 
 /* Traces s in bands of whole rows, handing each band's rows to on_rows,
  * and fills stats. Memory stays bounded whatever the image size: one band

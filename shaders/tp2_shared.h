@@ -23,7 +23,14 @@
 #define TP2_BINDING_WALK_RAYS 12 /* their rays: TP2_WALK_RAYS per walk */
 #define TP2_BINDING_SIGNATURES 13 /* per band pixel: its decisions (signature.glsl) */
 #define TP2_BINDING_PIXEL_LIST 14 /* band pixels a list pass traces again */
-#define TP2_BINDING_COUNT 15
+#define TP2_BINDING_OUTPUT 15 /* the finished band as the file needs it (finish.comp) */
+#define TP2_BINDING_COUNT 16
+
+/* finish.comp: TP2_FINISH_GROUP pixels per workgroup; its one
+ * specialization constant says whether the file takes 8-bit values (one
+ * RGBA8 word per pixel, quantized as image_quantize) or floats (4 words). */
+#define TP2_FINISH_GROUP 64
+#define TP2_FINISH_SPEC_BYTES 0
 
 /* Objects and BVH nodes, the loads of every ray's inner loop, are read as
  * texel buffers of 16-byte texels (usamplerBuffer over R32G32B32A32_UINT,

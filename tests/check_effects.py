@@ -506,6 +506,33 @@ def case_bands_agree(c):
         c.expect(outs[0] == outs[1], f".{ext}: 27 bands and 1 band differ")
 
 
+def case_device_quantize(c):
+    """PPM and PNG rows are quantized to 8 bits on the device (finish.comp,
+    float arithmetic only); every value equals the host's quantization of
+    the same render's floats (PFM), floor(255 c + 0.5) clamped to [0, 255]
+    in double, on a render of every sampled feature (8 samples: most
+    values land between levels) with a light bright enough to pass 1.
+    This catches packing, channel order and rounding mistakes; exactness
+    at the rounding boundaries, too rare to meet here, is unit_quantize's."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene().replace("0.8 0.8 0.8", "2.5 2.5 2.5"))
+    outs = {}
+    for ext in ("pfm", "ppm"):
+        outs[ext] = os.path.join(c.tmp, "q." + ext)
+        status, _, err = run(c.tp2, [scene, outs[ext], "160", "120"])
+        c.require(status == 0, f".{ext}: exit {status}: {err}")
+    _, _, rows = read_pfm(outs["pfm"])
+    want = bytes(0 if not v > 0 else 255 if v >= 1 else math.floor(v * 255 + 0.5)
+                 for row in rows for p in row for v in p)
+    got = read_ppm(outs["ppm"])[2]
+    c.require(len(got) == len(want), f"{len(got)} bytes, want {len(want)}")
+    wrong = sum(a != b for a, b in zip(got, want))
+    c.expect(wrong == 0, f"{wrong} of {len(want)} values quantized otherwise than the host")
+    levels = len(set(want))
+    c.expect(levels > 200 and 255 in want and 0 < sum(v >= 1 for row in rows for p in row
+                                                       for v in p),
+             f"too few values to show anything: {levels} levels")
+
+
 def auto_stats(err):
     """(precision line, pixels traced again or None) from tp2 --stats."""
     precision = re.search(r"tp2: precision  (.*)", err)

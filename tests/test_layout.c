@@ -1,6 +1,6 @@
 /* test_layout.c: the GLSL structs match the C structs, read from the SPIR-V.
  *
- * Walks the word stream of both embedded shaders (float and double) and,
+ * Walks the word stream of the embedded trace shaders (float and double) and,
  * for every storage buffer of shaders/layout.glsl, checks: the variable
  * exists (a buffer the optimiser dropped is a failure), its Binding equals
  * TP2_BINDING_* and its DescriptorSet 0, the runtime array's ArrayStride
@@ -9,8 +9,10 @@
  * C table has fields. The objects and the BVH nodes are texel buffers
  * (usamplerBuffer: checked by name, binding and image type; their texel
  * layout is pinned by asserts in gpu_layout.h and bvh.h). The bindings of
- * storage and texel buffers together must be exactly
- * 0 .. TP2_BINDING_COUNT - 1, so a buffer added on one side only shows up.
+ * storage and texel buffers must be exactly 0 .. TP2_BINDING_COUNT - 1
+ * but the output (trace.comp) and exactly the image and the output
+ * (finish.comp, whose push block is checked too), so a buffer added on
+ * one side only shows up.
  * Prints "N passed, M failed" last; exits 0 only when nothing failed. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,6 +30,8 @@
 #define tp2_trace_double test_spv_double
 #define tp2_trace_float_curved test_spv_float_curved
 #define tp2_trace_double_curved test_spv_double_curved
+#define tp2_finish test_spv_finish
+#include "finish_spv.h"
 #include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
 #include "trace_float_curved_spv.h"
@@ -36,6 +40,7 @@
 #undef tp2_trace_double
 #undef tp2_trace_float_curved
 #undef tp2_trace_double_curved
+#undef tp2_finish
 
 /* SPIR-V opcodes, decorations and storage classes used here (SPIR-V 1.x
  * specification, sections 3.32, 3.20 and 3.7). */
@@ -560,10 +565,10 @@ static void check_texel_buffer(const struct spv *m, const char *name, long bindi
            "%s: texel buffer %s: a usamplerBuffer", m->label, name);
 }
 
-/* Every storage and texel buffer in the module: bindings exactly
- * 0 .. COUNT - 1, each once, all in set 0, so one the tables above miss
- * is noticed. */
-static void check_binding_set(const struct spv *m)
+/* Every storage and texel buffer in the module: bindings exactly those
+ * of the mask (bit TP2_BINDING_*), each once, all in set 0, so one the
+ * tables above miss is noticed. */
+static void check_binding_set(const struct spv *m, unsigned mask)
 {
     int seen[TP2_BINDING_COUNT] = {0};
     int stray = 0;
@@ -579,10 +584,9 @@ static void check_binding_set(const struct spv *m)
     }
     int ok = stray == 0;
     for (int b = 0; b < TP2_BINDING_COUNT; b++)
-        ok &= seen[b] == 1;
-    expect(ok, "%s: " "storage and texel buffers bound exactly once each at 0..%d (%d stray)",
-           m->label,
-          TP2_BINDING_COUNT - 1, stray);
+        ok &= seen[b] == (int)(mask >> b & 1);
+    expect(ok, "%s: storage and texel buffers bound exactly once each at 0x%x (%d stray)",
+           m->label, mask, stray);
 }
 
 /* Bindings are distinct and below TP2_BINDING_COUNT, as the host's
@@ -596,7 +600,7 @@ static void check_bindings(void)
                       TP2_BINDING_IMAGE,    TP2_BINDING_STATS,
                       TP2_BINDING_STARTED,  TP2_BINDING_WALKS,
                       TP2_BINDING_WALK_RAYS, TP2_BINDING_SIGNATURES,
-                      TP2_BINDING_PIXEL_LIST};
+                      TP2_BINDING_PIXEL_LIST, TP2_BINDING_OUTPUT};
     size_t n = sizeof b / sizeof b[0];
     int ok = n == TP2_BINDING_COUNT;
     for (size_t i = 0; i < n; i++) {
@@ -628,7 +632,20 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
     check_push_constants(m);
     check_texel_buffer(m, "object_texels", TP2_BINDING_OBJECTS);
     check_texel_buffer(m, "node_texels", TP2_BINDING_BVH);
-    check_binding_set(m);
+    /* every binding but the finish pass's output */
+    check_binding_set(m, ((1u << TP2_BINDING_COUNT) - 1) & ~(1u << TP2_BINDING_OUTPUT));
+}
+
+/* finish.comp: the band's pixels in, the output words out, the push block
+ * of trace.comp; together with trace.comp's, every binding. */
+static void check_finish(const struct spv *m)
+{
+    if (spv_validate(m) != 0)
+        return;
+    check_plain_array(m, "ImageBuf", TP2_BINDING_IMAGE, 4 * sizeof(float), KIND_F32, "vec4");
+    check_plain_array(m, "OutputBuf", TP2_BINDING_OUTPUT, sizeof(uint32_t), KIND_U32, "uint");
+    check_push_constants(m);
+    check_binding_set(m, 1u << TP2_BINDING_IMAGE | 1u << TP2_BINDING_OUTPUT);
 }
 
 int main(void)
@@ -650,5 +667,8 @@ int main(void)
                  sizeof(float), KIND_F32);
     check_module(&dc, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
                  sizeof(double), KIND_F64);
+    const struct spv fin = {"finish", test_spv_finish,
+                            sizeof test_spv_finish / sizeof test_spv_finish[0]};
+    check_finish(&fin);
     return unit_report();
 }
