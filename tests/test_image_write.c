@@ -643,6 +643,45 @@ static void test_streaming(const float *rgba)
     }
 }
 
+/* Rows given as 8-bit words (the renderer's, quantized on the device)
+ * make the very file the float rows make, in PPM and PNG, streamed in
+ * bands; a PFM writer refuses them with a message and leaves nothing. */
+static void test_rgba8_rows(const float *rgba)
+{
+    static const char *ext[] = {"ppm", "png"};
+    static const enum image_format fmt[] = {IMAGE_PPM, IMAGE_PNG};
+    uint32_t words[W * H];
+    for (int i = 0; i < W * H; i++) /* alpha byte set: it must be ignored */
+        words[i] = image_quantize(rgba[4 * i]) | image_quantize(rgba[4 * i + 1]) << 8 |
+                   (uint32_t)image_quantize(rgba[4 * i + 2]) << 16 | 0xab000000u;
+    for (int f = 0; f < 2; f++) {
+        char want[256], got[256], name[32];
+        snprintf(name, sizeof name, "floats.%s", ext[f]);
+        path_in(want, sizeof want, name);
+        snprintf(name, sizeof name, "words.%s", ext[f]);
+        path_in(got, sizeof got, name);
+        CHECK(image_write(want, fmt[f], W, H, rgba) == 0);
+        struct image_writer *w = image_writer_open(got, fmt[f], W, H);
+        CHECK(w && image_writer_rows_rgba8(w, words, 2) == 0 &&
+              image_writer_rows_rgba8(w, words + 2 * W, H - 2) == 0 &&
+              image_writer_finish(w) == 0);
+        expect(same_file(want, got), "line %d: %s from 8-bit rows", __LINE__, ext[f]);
+        unlink(want);
+        unlink(got);
+    }
+    int before = count_names(is_entry);
+    char p[256];
+    path_in(p, sizeof p, "words.pfm");
+    struct image_writer *w = image_writer_open(p, IMAGE_PFM, W, H);
+    capture_begin();
+    int rc = w ? image_writer_rows_rgba8(w, words, H) : 0;
+    char *err = capture_end();
+    CHECK(rc == -1 && strstr(err, "8-bit rows for a PFM file") != NULL);
+    free(err);
+    image_writer_abort(w);
+    CHECK(count_names(is_entry) == before && access(p, F_OK) != 0);
+}
+
 /* A writer given too few or too many rows fails and leaves nothing; one
  * aborted leaves an existing output as it was. */
 static void test_streaming_failures(const float *rgba)
@@ -796,6 +835,7 @@ int main(void)
     test_replace(rgba);
     test_failures(rgba);
     test_streaming(rgba);
+    test_rgba8_rows(rgba);
     test_streaming_failures(rgba);
     test_modes(rgba);
     test_long_names(rgba);
