@@ -16,8 +16,10 @@
 #include "scene_pack.h"
 #include "spirv_fused.h"
 #include "tp2_shared.h"
+#include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
+#include "trace_float_basic_spv.h"
 #include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #include "vk_buffer.h"
@@ -255,11 +257,19 @@ static bool needs_loop_guard(const struct vkc *vk)
     return vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
-/* Whether the scene uses a kind only the curved builds have. */
-static bool curved_kinds(const struct scene_features *f)
+/* The kinds a SPIR-V build has (CMakeLists.txt): spheres and planes; and
+ * the faceted kinds; and the curved kinds as well. */
+enum kind_tier { TIER_BASIC, TIER_FACETED, TIER_CURVED, KIND_TIERS };
+
+/* The least tier that has every kind the scene uses. */
+static enum kind_tier kind_tier(const struct scene_features *f)
 {
-    return (f->shapes & (1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE |
-                         1 << TP2_SHAPE_TORUS | 1 << TP2_SHAPE_QUADRIC)) != 0;
+    if (f->shapes & (1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE | 1 << TP2_SHAPE_TORUS |
+                     1 << TP2_SHAPE_QUADRIC))
+        return TIER_CURVED;
+    if (f->shapes & (1 << TP2_SHAPE_TRIANGLE | 1 << TP2_SHAPE_BOX | 1 << TP2_SHAPE_POLYHEDRON))
+        return TIER_FACETED;
+    return TIER_BASIC;
 }
 
 /* Whether TP2_FUSED=1 asks for the shaders to round as a device that
@@ -270,18 +280,18 @@ static bool fused_requested(void)
     return env && strcmp(env, "1") == 0;
 }
 
-/* The SPIR-V build for the precision and kinds (CMakeLists.txt). */
-static const uint32_t *spirv_code(bool use_double, bool curved)
-{
-    return use_double ? (curved ? tp2_trace_double_curved : tp2_trace_double)
-                      : (curved ? tp2_trace_float_curved : tp2_trace_float);
-}
-
-static size_t spirv_size(bool use_double, bool curved)
-{
-    return use_double ? (curved ? sizeof tp2_trace_double_curved : sizeof tp2_trace_double)
-                      : (curved ? sizeof tp2_trace_float_curved : sizeof tp2_trace_float);
-}
+/* The SPIR-V builds (CMakeLists.txt), by precision (double: 1) and tier. */
+static const struct {
+    const uint32_t *code;
+    size_t size;
+} builds[2][KIND_TIERS] = {
+    {{tp2_trace_float_basic, sizeof tp2_trace_float_basic},
+     {tp2_trace_float, sizeof tp2_trace_float},
+     {tp2_trace_float_curved, sizeof tp2_trace_float_curved}},
+    {{tp2_trace_double_basic, sizeof tp2_trace_double_basic},
+     {tp2_trace_double, sizeof tp2_trace_double},
+     {tp2_trace_double_curved, sizeof tp2_trace_double_curved}},
+};
 
 /* How the shader reads binding i (tp2_shared.h): objects and BVH nodes
  * as texels, the rest as storage buffers. */
@@ -332,7 +342,7 @@ static int create_layouts(struct renderer *r)
     };
     TP2_VK_TRY(vkCreatePipelineLayout(r->vk.device, &layout_info, NULL,
                                       &r->pipeline_layout));
-    bool curved = curved_kinds(&r->features);
+    enum kind_tier tier = kind_tier(&r->features);
     struct tracer *passes[2];
     bool fused = fused_requested();
     if (fused && !r->vk.float64) {
@@ -341,8 +351,8 @@ static int create_layouts(struct renderer *r)
     }
     for (int k = 0, n = tracers(r, passes); k < n; k++) {
         struct tracer *t = passes[k];
-        const uint32_t *code = spirv_code(t->use_double, curved);
-        size_t words = spirv_size(t->use_double, curved) / sizeof *code;
+        const uint32_t *code = builds[t->use_double][tier].code;
+        size_t words = builds[t->use_double][tier].size / sizeof *code;
         size_t sites = 0;
         uint32_t *rewritten = fused ? spirv_fused(code, words, &words, &sites) : NULL;
         if (fused && !rewritten) {

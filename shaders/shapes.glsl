@@ -495,12 +495,14 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
         return hit_sphere(i, o, d, on, inward);
     if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
         return hit_plane(i, o, d, on);
+#ifdef TP2_FACETED // the builds with faces (see CMakeLists.txt)
     if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
         return hit_triangle(i, o, d, on);
     if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
         return hit_box(i, o, d, on, inward, part);
     if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
         return hit_polyhedron(i, o, d, on, inward, part);
+#endif
 #ifdef TP2_CURVED
     if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
         (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
@@ -524,12 +526,14 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
         surface_sphere(i, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
         onto_plane(object_row(i, 0), p, n, scale);
+#ifdef TP2_FACETED
     else if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
         surface_triangle(i, o, d, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
         surface_box(i, part, p, n, scale);
     else if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
         surface_polyhedron(i, part, p, n, scale);
+#endif
 #ifdef TP2_CURVED
     else if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
              (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))

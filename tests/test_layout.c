@@ -1,6 +1,7 @@
 /* test_layout.c: the GLSL structs match the C structs, read from the SPIR-V.
  *
- * Walks the word stream of the embedded trace shaders (float and double) and,
+ * Walks the word stream of the six embedded trace shaders (float and double,
+ * three tiers of kinds each) and,
  * for every storage buffer of shaders/layout.glsl, checks: the variable
  * exists (a buffer the optimiser dropped is a failure), its Binding equals
  * TP2_BINDING_* and its DescriptorSet 0, the runtime array's ArrayStride
@@ -30,16 +31,22 @@
 #define tp2_trace_double test_spv_double
 #define tp2_trace_float_curved test_spv_float_curved
 #define tp2_trace_double_curved test_spv_double_curved
+#define tp2_trace_float_basic test_spv_float_basic
+#define tp2_trace_double_basic test_spv_double_basic
 #define tp2_finish test_spv_finish
 #include "finish_spv.h"
+#include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
+#include "trace_float_basic_spv.h"
 #include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #undef tp2_trace_float
 #undef tp2_trace_double
 #undef tp2_trace_float_curved
 #undef tp2_trace_double_curved
+#undef tp2_trace_float_basic
+#undef tp2_trace_double_basic
 #undef tp2_finish
 
 /* SPIR-V opcodes, decorations and storage classes used here (SPIR-V 1.x
@@ -666,6 +673,14 @@ int main(void)
     check_module(&fc, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
                  sizeof(float), KIND_F32);
     check_module(&dc, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
+                 sizeof(double), KIND_F64);
+    const struct spv fb = {"float basic", test_spv_float_basic,
+                           sizeof test_spv_float_basic / sizeof test_spv_float_basic[0]};
+    const struct spv db = {"double basic", test_spv_double_basic,
+                           sizeof test_spv_double_basic / sizeof test_spv_double_basic[0]};
+    check_module(&fb, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
+                 sizeof(float), KIND_F32);
+    check_module(&db, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
                  sizeof(double), KIND_F64);
     const struct spv fin = {"finish", test_spv_finish,
                             sizeof test_spv_finish / sizeof test_spv_finish[0]};

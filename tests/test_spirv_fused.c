@@ -1,6 +1,6 @@
 /* test_spirv_fused.c: the rewrite that makes tp2's shaders round as a
  * device that fuses multiply-adds (spirv_fused, for TP2_FUSED=1). On each
- * of the four embedded shaders: operations are rewritten, the result is a
+ * of the six embedded trace shaders: operations are rewritten, the result is a
  * well-formed module that declares Float64 once and defines every id once
  * (SSA), its id bound covers every id, and a second pass finds nothing
  * left to fuse. Malformed modules are refused. (That the rewritten shader
@@ -11,8 +11,10 @@
 #include <string.h>
 
 #include "spirv_fused.h"
+#include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
 #include "trace_double_spv.h"
+#include "trace_float_basic_spv.h"
 #include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #include "unit.h"
@@ -99,6 +101,8 @@ int main(void)
     check_shader("float curved", tp2_trace_float_curved, sizeof tp2_trace_float_curved);
     check_shader("double", tp2_trace_double, sizeof tp2_trace_double);
     check_shader("double curved", tp2_trace_double_curved, sizeof tp2_trace_double_curved);
+    check_shader("float basic", tp2_trace_float_basic, sizeof tp2_trace_float_basic);
+    check_shader("double basic", tp2_trace_double_basic, sizeof tp2_trace_double_basic);
     check_refused();
     return unit_report();
 }
