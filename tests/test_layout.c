@@ -655,35 +655,30 @@ static void check_finish(const struct spv *m)
     check_binding_set(m, 1u << TP2_BINDING_IMAGE | 1u << TP2_BINDING_OUTPUT);
 }
 
+#define SPV(label, words) {label, words, sizeof words / sizeof words[0]}
+
+/* One trace build: its double-ness picks the C tables it must match. */
+static void check_trace(const struct spv *m, int is_double)
+{
+    if (is_double)
+        check_module(m, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
+                     sizeof(double), KIND_F64);
+    else
+        check_module(m, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
+                     sizeof(float), KIND_F32);
+}
+
 int main(void)
 {
-    const struct spv f = {"float", test_spv_float,
-                          sizeof test_spv_float / sizeof test_spv_float[0]};
-    const struct spv d = {"double", test_spv_double,
-                          sizeof test_spv_double / sizeof test_spv_double[0]};
     check_bindings();
-    const struct spv fc = {"float curved", test_spv_float_curved,
-                           sizeof test_spv_float_curved / sizeof test_spv_float_curved[0]};
-    const struct spv dc = {"double curved", test_spv_double_curved,
-                           sizeof test_spv_double_curved / sizeof test_spv_double_curved[0]};
-    check_module(&f, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
-                 sizeof(float), KIND_F32);
-    check_module(&d, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
-                 sizeof(double), KIND_F64);
-    check_module(&fc, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
-                 sizeof(float), KIND_F32);
-    check_module(&dc, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
-                 sizeof(double), KIND_F64);
-    const struct spv fb = {"float basic", test_spv_float_basic,
-                           sizeof test_spv_float_basic / sizeof test_spv_float_basic[0]};
-    const struct spv db = {"double basic", test_spv_double_basic,
-                           sizeof test_spv_double_basic / sizeof test_spv_double_basic[0]};
-    check_module(&fb, float_buffers, sizeof float_buffers / sizeof float_buffers[0],
-                 sizeof(float), KIND_F32);
-    check_module(&db, double_buffers, sizeof double_buffers / sizeof double_buffers[0],
-                 sizeof(double), KIND_F64);
-    const struct spv fin = {"finish", test_spv_finish,
-                            sizeof test_spv_finish / sizeof test_spv_finish[0]};
+    const struct spv traces[] = {
+        SPV("float basic", test_spv_float_basic),   SPV("double basic", test_spv_double_basic),
+        SPV("float", test_spv_float),               SPV("double", test_spv_double),
+        SPV("float curved", test_spv_float_curved), SPV("double curved", test_spv_double_curved),
+    };
+    for (int k = 0; k < 6; k++)
+        check_trace(&traces[k], k % 2);
+    const struct spv fin = SPV("finish", test_spv_finish);
     check_finish(&fin);
     return unit_report();
 }
