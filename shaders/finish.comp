@@ -15,16 +15,7 @@ layout(constant_id = TP2_FINISH_SPEC_BYTES) const bool BYTES = true;
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) readonly buffer ImageBuf { vec4 pixels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_OUTPUT) writeonly buffer OutputBuf { uint words[]; };
 
-// trace.comp's push block; only the first members are read here.
-layout(push_constant) uniform Tile {
-    ivec2 tile_origin;
-    int sample_index;
-    int pass_rays;
-    int walk_capacity;
-    int accept_cut;
-    int tile_rows;
-    int list_length; // here: the band's pixels
-};
+#include "tile.glsl" // list_length: the band's pixels
 
 // The 8-bit level of a linear channel exactly as the host's
 // image_quantize: clamped to [0, 1], floor(255 c + 0.5) of the exact

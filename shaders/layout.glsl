@@ -91,18 +91,7 @@ layout(std430, set = 0, binding = TP2_BINDING_WALK_RAYS) buffer WalkRayBuf { Wal
 layout(std430, set = 0, binding = TP2_BINDING_SIGNATURES) buffer SignatureBuf { uint signatures[]; };
 layout(std430, set = 0, binding = TP2_BINDING_PIXEL_LIST) readonly buffer PixelListBuf { uint pixel_list[]; };
 
-// What this dispatch covers: a band of pixels (or the listed ones of it),
-// which of their samples, and how many rays a walk may trace in it
-// (TP2_WALK_START, _CONTINUE).
-layout(push_constant) uniform Tile {
-    ivec2 tile_origin;
-    int sample_index;
-    int pass_rays;       // rays each walk may trace in this pass
-    int walk_capacity;   // walks the walk buffers hold
-    int accept_cut;      // 1: pass_rays is 1 and still cut: keep what there is
-    int tile_rows;       // rows of the band; with signatures, one more is traced
-    int list_length;     // pixels in pixel_list (TP2_SPEC_PIXEL_LIST)
-};
+#include "tile.glsl"
 
 layout(constant_id = TP2_SPEC_REFLECT) const bool HAS_REFLECT = true;
 layout(constant_id = TP2_SPEC_REFRACT) const bool HAS_REFRACT = true;
