@@ -39,3 +39,16 @@ void *big_calloc(size_t count, size_t size)
         memset(p, 0, count * size);
     return p;
 }
+
+void big_advise(void *p, size_t n)
+{
+#ifdef MADV_HUGEPAGE
+    uintptr_t begin = ((uintptr_t)p + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
+    uintptr_t end = ((uintptr_t)p + n) / HUGE_PAGE * HUGE_PAGE;
+    if ((uintptr_t)p <= UINTPTR_MAX - n && end > begin)
+        madvise((void *)begin, end - begin, MADV_HUGEPAGE);
+#else
+    (void)p;
+    (void)n;
+#endif
+}

@@ -14,4 +14,10 @@ void *big_alloc(size_t n);
 /* big_alloc(count * size), zeroed; NULL on overflow too. */
 void *big_calloc(size_t count, size_t size);
 
+/* Offers the 2 MiB-aligned whole pages inside [p, p + n), memory that
+ * something else allocated and nothing has touched yet (a CPU device's
+ * buffer, which is the host's own memory), as transparent huge pages.
+ * Advice only: where the kernel declines, nothing changes. */
+void big_advise(void *p, size_t n);
+
 #endif

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "clock.h"
 #include "finish_spv.h"
 #include "gpu_layout.h"
@@ -143,12 +144,17 @@ static bool by_precision(int binding)
            binding == TP2_BINDING_EXTRA;
 }
 
-/* A device buffer holding input buffer i of p. */
+/* A device buffer holding input buffer i of p. A CPU device's memory is
+ * the host's, untouched until this copy: as huge pages, filling it takes a
+ * page fault per 2 MiB instead of per 4 KiB (a million spheres, auto: the
+ * copies took 0.67 s, 0.05-0.28 s advised). */
 static int upload(const struct renderer *r, const struct packed_scene *p, int i,
                   struct vk_buffer *b)
 {
     if (vk_buffer_create(&r->vk, p->size[i], false, b) != 0)
         return -1;
+    if (r->vk.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        big_advise(b->mapped, p->size[i]);
     memcpy(b->mapped, p->data[i], p->size[i]);
     return 0;
 }
