@@ -19,15 +19,22 @@ void *big_alloc(size_t n)
         return NULL;
     if (n < HUGE_PAGE)
         return malloc(n);
-    if (n > SIZE_MAX - HUGE_PAGE)
+    size_t rounded = big_alloc_capacity(n);
+    if (rounded == 0)
         return NULL;
-    size_t rounded = (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
     void *p = aligned_alloc(HUGE_PAGE, rounded);
 #ifdef MADV_HUGEPAGE
     if (p)
         madvise(p, rounded, MADV_HUGEPAGE); /* advice: failure changes nothing */
 #endif
     return p;
+}
+
+size_t big_alloc_capacity(size_t n)
+{
+    if (n < HUGE_PAGE || n > SIZE_MAX - HUGE_PAGE)
+        return 0;
+    return (n + HUGE_PAGE - 1) / HUGE_PAGE * HUGE_PAGE;
 }
 
 void *big_calloc(size_t count, size_t size)

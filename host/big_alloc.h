@@ -11,6 +11,10 @@
  * NULL when n is 0 or out of memory. */
 void *big_alloc(size_t n);
 
+/* The bytes a block of big_alloc(n) owns when it is aligned to 2 MiB (n
+ * rounded up to a multiple of 2 MiB), or 0 when it is plain malloc's. */
+size_t big_alloc_capacity(size_t n);
+
 /* big_alloc(count * size), zeroed; NULL on overflow too. */
 void *big_calloc(size_t count, size_t size);
 

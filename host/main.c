@@ -95,8 +95,11 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh "
                     "and upload)\n", st->device);
     fprintf(stderr, "tp2: bvh        %8.3f s (building the BVH)\n", st->bvh);
-    fprintf(stderr, "tp2: upload     %8.3f s (packing and filling the device's buffers)\n",
+    fprintf(stderr, "tp2: upload     %8.3f s (packing and filling the device's buffers",
             st->upload);
+    if (st->in_place)
+        fprintf(stderr, "; %.1f MiB of them read in place", (double)st->in_place / (1 << 20));
+    fputs(")\n", stderr);
     fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);

@@ -144,13 +144,22 @@ static bool by_precision(int binding)
            binding == TP2_BINDING_EXTRA;
 }
 
-/* A device buffer holding input buffer i of p. A CPU device's memory is
- * the host's, untouched until this copy: as huge pages, filling it takes a
- * page fault per 2 MiB instead of per 4 KiB (a million spheres, auto: the
- * copies took 0.67 s, 0.05-0.28 s advised). */
+/* A device buffer holding input buffer i of p. A CPU device that can
+ * reads a big one where it lies (vk_context.c, wants_host_import): a
+ * million spheres under auto copied 0.2-0.7 s of them. Otherwise it is
+ * copied; a CPU device's memory is the host's, untouched until this copy,
+ * and as huge pages filling it takes a page fault per 2 MiB instead of per
+ * 4 KiB (that million: 0.67 s of copies became 0.05-0.28 s). */
 static int upload(const struct renderer *r, const struct packed_scene *p, int i,
                   struct vk_buffer *b)
 {
+    size_t capacity = big_alloc_capacity(p->size[i]);
+    VkDeviceSize align = r->vk.host_import;
+    if (align && capacity && capacity % align == 0 && (uintptr_t)p->data[i] % align == 0) {
+        int rc = vk_buffer_import(&r->vk, p->data[i], p->size[i], capacity, b);
+        if (rc <= 0)
+            return rc;
+    }
     if (vk_buffer_create(&r->vk, p->size[i], false, b) != 0)
         return -1;
     if (r->vk.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
@@ -1066,6 +1075,10 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;
     double t2 = clock_seconds();
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
+        stats->in_place += r.buffers[i].imported ? r.buffers[i].size : 0;
+        stats->in_place += r.twin[i].imported ? r.twin[i].size : 0;
+    }
     r.features = packed.features;
     r.count_rays = opt->count_rays;
     /* The retrace pass's pipelines, like the walks', are made when first

@@ -38,6 +38,8 @@ struct render_options {
  * time spent in the row callback). */
 struct render_stats {
     double device, pipeline, bvh, upload, render, readback, write;
+    uint64_t in_place;    /* bytes of the scene the device reads from the
+                           * host's arrays instead of a copy */
     int bands, band_rows; /* bands rendered, rows in each (the last: fewer) */
     uint32_t passes;      /* dispatches: a pass per band and sample, more
                            * where walks went on or lavapipe cut a pass */

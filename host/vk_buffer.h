@@ -9,6 +9,7 @@ struct vk_buffer {
     VkDeviceMemory memory;
     void *mapped;
     VkDeviceSize size;
+    bool imported; /* mapped is host memory the device reads in place */
 };
 
 /* Creates a storage buffer of `size` bytes, mapped and coherent; `readback`
@@ -16,6 +17,14 @@ struct vk_buffer {
  * (the shader reads it). Returns 0 or -1 after a message. */
 int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
                      struct vk_buffer *b);
+
+/* A buffer of `size` bytes that the device reads from host memory in
+ * place, where c->host_import is not 0: `host` is aligned to it and owns
+ * `capacity` bytes, a multiple of it and at least `size`; it must outlive
+ * the buffer. Returns 0, 1 if the device cannot import such a buffer (then
+ * copy it), or -1 after a message. */
+int vk_buffer_import(const struct vkc *c, void *host, VkDeviceSize size,
+                     VkDeviceSize capacity, struct vk_buffer *b);
 
 /* Unmaps and frees; safe on a zeroed buffer. */
 void vk_buffer_destroy(const struct vkc *c, struct vk_buffer *b);

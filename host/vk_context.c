@@ -362,6 +362,33 @@ static int pick_device(struct vkc *c, const struct vkc_options *opt)
     return 0;
 }
 
+/* True if the device offers extension `name`. */
+static bool device_has_extension(VkPhysicalDevice physical, const char *name)
+{
+    uint32_t n = 0;
+    if (vkEnumerateDeviceExtensionProperties(physical, NULL, &n, NULL) != VK_SUCCESS)
+        return false;
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    bool found = false;
+    if (ext && vkEnumerateDeviceExtensionProperties(physical, NULL, &n, ext) == VK_SUCCESS)
+        for (uint32_t i = 0; i < n && !found; i++)
+            found = strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+/* A CPU device's memory is the host's: reading the packed scene where it
+ * lies saves copying it (and its page faults) into memory of the same
+ * kind. A GPU would read it across the bus on every ray, so there the
+ * scene is copied. TP2_HOST_IMPORT=0 turns this off (the tests compare). */
+static bool wants_host_import(const struct vkc *c)
+{
+    const char *env = getenv("TP2_HOST_IMPORT");
+    return c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+           !(env && strcmp(env, "0") == 0) &&
+           device_has_extension(c->physical, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
+}
+
 static int create_device(struct vkc *c, const struct vkc_options *opt)
 {
     VkPhysicalDeviceFeatures have;
@@ -387,14 +414,32 @@ static int create_device(struct vkc *c, const struct vkc_options *opt)
         .queueCount = 1,
         .pQueuePriorities = &priority,
     };
+    bool import = wants_host_import(c);
+    const char *extensions[] = {VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME};
     VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &queue,
+        .enabledExtensionCount = import ? 1 : 0,
+        .ppEnabledExtensionNames = extensions,
         .pEnabledFeatures = &want,
     };
     TP2_VK_TRY(vkCreateDevice(c->physical, &info, NULL, &c->device));
     vkGetDeviceQueue(c->device, c->queue_family, 0, &c->queue);
+    if (import) {
+        VkPhysicalDeviceExternalMemoryHostPropertiesEXT host = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_MEMORY_HOST_PROPERTIES_EXT,
+        };
+        VkPhysicalDeviceProperties2 props = {
+            .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+            .pNext = &host,
+        };
+        vkGetPhysicalDeviceProperties2(c->physical, &props);
+        c->host_pointer_properties = (PFN_vkGetMemoryHostPointerPropertiesEXT)
+            vkGetDeviceProcAddr(c->device, "vkGetMemoryHostPointerPropertiesEXT");
+        if (c->host_pointer_properties)
+            c->host_import = host.minImportedHostPointerAlignment;
+    }
     return 0;
 }
 

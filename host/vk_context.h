@@ -23,6 +23,10 @@ struct vkc {
     VkQueue queue;
     uint32_t queue_family;
     bool float64; /* shaderFloat64 is enabled */
+    /* On a CPU device with VK_EXT_external_memory_host: the alignment of
+     * host memory it can read in place (vk_buffer_import); 0 elsewhere. */
+    VkDeviceSize host_import;
+    PFN_vkGetMemoryHostPointerPropertiesEXT host_pointer_properties;
 };
 
 /* Creates the instance and device. Returns 0, or -1 after printing one

@@ -364,6 +364,38 @@ def case_million_triangles(c):
     c.expect(len(set(images[0])) > 50, "flat image")
 
 
+def grid_of_spheres(n_side):
+    """n_side^2 small spheres in a grid before the camera, lit, over a plane."""
+    spheres = [f"0 0 sphere {x * 0.05 - n_side * 0.025:.3f} {y * 0.05 - n_side * 0.025:.3f} -8 0.02"
+               for x in range(n_side) for y in range(n_side)]
+    return ("0 0 0\n0 0 -1\n0 1 0\n40\n2\n0 0 0 0.3 0.3 0.3 0 0 0\n3 4 2 1 1 1 1 0 0\n"
+            "1\nchecker 1 0.5 0  0 0.25 1  0.3\n1\n0.2 0.7 0.3 20 0.2 0 1\n" +
+            f"{len(spheres) + 1}\n" + "\n".join(spheres) + "\n0 0 plane 0 0 1 9\n")
+
+
+def case_scene_read_in_place(c):
+    """On a CPU device the scene's big arrays are read where they lie
+    (VK_EXT_external_memory_host) instead of copied: --stats says how much,
+    the validation layer accepts it, and the image is the copied scene's,
+    byte for byte, under float and auto (whose double twin is read in place
+    too)."""
+    scene = scene_file(c.tmp, "grid.txt", grid_of_spheres(230))  # 52,900 spheres
+    for precision in ("float", "auto"):
+        images, in_place = [], []
+        for importing in ("1", "0"):
+            out = os.path.join(c.tmp, f"{precision}-{importing}.ppm")
+            status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", precision, scene,
+                                         out, "80", "60"], {"TP2_HOST_IMPORT": importing})
+            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+            found = re.search(r"; ([0-9.]+) MiB of them read in place\)", err)
+            in_place.append(float(found.group(1)) if found else 0.0)
+            images.append(read_ppm(out)[2])
+        c.expect(in_place[0] >= 2 and in_place[1] == 0,
+                 f"{precision}: MiB read in place {in_place} (imported, copied)")
+        c.expect(images[0] == images[1], f"{precision}: read in place, the image differs")
+        c.expect(len(set(images[0])) > 20, f"{precision}: flat image")
+
+
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop."""
     scene = os.path.join(HERE, "render", "many-spheres.txt")
