@@ -37,6 +37,21 @@
  * in one dispatch than in 40); eight still let the progress bar move. */
 #define TP2_CPU_TILES 8
 
+/* Camera samples from which auto makes its retrace pipeline at the start
+ * rather than when a band first marks a pixel. On lavapipe that compile
+ * takes 0.04-0.12 s; beside the band pass's it costs 12-20 ms of wall
+ * time (2 CPUs: it slows the other) and saves all of it where a pixel is
+ * marked. At 1920 x 1080 all 20 bench scenes (showpiece aside) marked
+ * some, at 400 x 300 9 of 36 scenes and corpus files marked none. The
+ * environment variable of that name replaces it (tests). */
+#define TP2_EAGER_RETRACE (1 << 20)
+
+static double eager_retrace_samples(void)
+{
+    const char *env = getenv("TP2_EAGER_RETRACE");
+    return env && *env ? atof(env) : TP2_EAGER_RETRACE;
+}
+
 /* Largest band buffer in bytes: whole images no longer have to fit one
  * storage buffer (lavapipe's limit, 128 MiB, stopped at about 3840 x 2160),
  * and host memory stays bounded whatever the image size. 32 MiB is two
@@ -77,7 +92,6 @@ struct renderer {
     struct vk_buffer twin[TP2_INPUT_BUFFERS]; /* the retrace pass's double scene */
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
-    VkPipelineCache cache;
     struct tracer band, retrace; /* retrace in use where band.signatures */
     struct scene_features features;
     bool count_rays;
@@ -90,7 +104,8 @@ struct renderer {
     bool bytes;       /* the file takes 8-bit values (render_options.bytes) */
     VkShaderModule finish_shader; /* finish.comp: the band as the file needs it */
     VkPipeline finish;
-    int finish_rc;    /* create_finish's, from finish_job */
+    int side_rc;      /* side_job's */
+    bool eager_retrace; /* make the retrace pipeline beside the band's */
     unsigned char *host_band; /* the last finished band, copied out for the writer */
     uint32_t *last_signatures; /* the previous band's last row's (retracing) */
     bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
@@ -409,13 +424,10 @@ static VkComputePipelineCreateInfo pipeline_info(const struct renderer *r, VkSha
     };
 }
 
-/* Pass t's pipeline for walks of kind `walk` (TP2_WALK_*), made when
- * first needed: most scenes only ever need TP2_WALK_WHOLE. */
-static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
+/* Makes pass t's pipeline for walks of kind `walk` (TP2_WALK_*), through
+ * a pipeline cache of its own, so that two threads may each make one. */
+static int make_pipeline(struct renderer *r, struct tracer *t, int walk)
 {
-    if (t->pipelines[walk])
-        return 0;
-    double t0 = clock_seconds();
     int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
     spec_values(&r->features, t, r->count_rays, r->loop_guard, walk, values, map);
@@ -426,14 +438,30 @@ static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
         .pData = values,
     };
     VkComputePipelineCreateInfo info = pipeline_info(r, t->shader, &spec);
-    if (pipeline_cache_load(&r->vk, &r->cache) != 0)
+    VkPipelineCache cache = VK_NULL_HANDLE;
+    if (pipeline_cache_load(&r->vk, &cache) != 0)
         return -1;
-    TP2_VK_TRY(vkCreateComputePipelines(r->vk.device, r->cache, 1, &info, NULL,
-                                        &t->pipelines[walk]));
-    pipeline_cache_save(&r->vk, r->cache);
-    r->cache = VK_NULL_HANDLE;
-    r->pipeline_time += clock_seconds() - t0;
+    VkResult made = vkCreateComputePipelines(r->vk.device, cache, 1, &info, NULL,
+                                             &t->pipelines[walk]);
+    pipeline_cache_save(&r->vk, cache);
+    if (made != VK_SUCCESS) {
+        t->pipelines[walk] = VK_NULL_HANDLE;
+        vk_report("vkCreateComputePipelines", made, __FILE__, __LINE__);
+        return -1;
+    }
     return 0;
+}
+
+/* Pass t's pipeline for walks of kind `walk`, made when first needed:
+ * most scenes only ever need TP2_WALK_WHOLE. */
+static int need_pipeline(struct renderer *r, struct tracer *t, int walk)
+{
+    if (t->pipelines[walk])
+        return 0;
+    double t0 = clock_seconds();
+    int rc = make_pipeline(r, t, walk);
+    r->pipeline_time += clock_seconds() - t0;
+    return rc;
 }
 
 /* The finish pipeline (finish.comp), for 8-bit values or floats. */
@@ -459,12 +487,17 @@ static int create_finish(struct renderer *r)
     return 0;
 }
 
-/* create_finish on a thread of its own, beside the trace pipeline's much
- * longer compile (on lavapipe it would add 8-10 ms to every start). */
-static void *finish_job(void *arg)
+/* What is compiled on a thread of its own, beside the band pass's much
+ * longer compile: the finish pipeline (on lavapipe it would add 8-10 ms
+ * to every start), and under auto, for images of TP2_EAGER_RETRACE
+ * samples or more, the retrace pass's, which is otherwise made in the
+ * middle of the first band that needs it. */
+static void *side_job(void *arg)
 {
     struct renderer *r = arg;
-    r->finish_rc = create_finish(r);
+    r->side_rc = create_finish(r);
+    if (r->side_rc == 0 && r->eager_retrace)
+        r->side_rc = make_pipeline(r, &r->retrace, TP2_WALK_WHOLE);
     return NULL;
 }
 
@@ -868,7 +901,6 @@ static void renderer_destroy(struct renderer *r)
         }
         vkDestroyPipeline(d, r->finish, NULL);
         vkDestroyShaderModule(d, r->finish_shader, NULL);
-        vkDestroyPipelineCache(d, r->cache, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
         vkDestroyDescriptorSetLayout(d, r->set_layout, NULL);
         for (int i = TP2_BINDING_COUNT - 1; i >= 0; i--)
@@ -1072,6 +1104,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     r.retrace.pass_rays = pass_rays(r.loop_guard, &r.retrace.walking);
     r.walk_capacity = r.loop_guard ? TP2_WALK_CAPACITY : 1;
     describe_precision(&r, opt, twin_fits, stats);
+    r.eager_retrace = retracing(&r) && (double)opt->width * opt->height *
+                                               packed.features.samples >= eager_retrace_samples();
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;
     double t2 = clock_seconds();
@@ -1085,14 +1119,14 @@ int render_scene(const struct scene *s, const struct render_options *opt,
      * needed: a scene where no pixel needs double never makes them. */
     if (create_layouts(&r) != 0)
         goto done;
-    pthread_t finisher;
-    bool finishing = pthread_create(&finisher, NULL, finish_job, &r) == 0;
-    if (!finishing)
-        finish_job(&r);
+    pthread_t side;
+    bool beside = pthread_create(&side, NULL, side_job, &r) == 0;
+    if (!beside)
+        side_job(&r);
     int band_rc = need_pipeline(&r, &r.band, TP2_WALK_WHOLE);
-    if (finishing)
-        pthread_join(finisher, NULL);
-    if (band_rc != 0 || r.finish_rc != 0 || create_descriptors(&r) != 0 ||
+    if (beside)
+        pthread_join(side, NULL);
+    if (band_rc != 0 || r.side_rc != 0 || create_descriptors(&r) != 0 ||
         create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();

@@ -396,6 +396,23 @@ def case_scene_read_in_place(c):
         c.expect(len(set(images[0])) > 20, f"{precision}: flat image")
 
 
+def case_retrace_pipeline_eager(c):
+    """Auto's retrace pipeline made at the start, beside the band pass's
+    (on a second thread: the validation layer watches both), gives the
+    image of the one made when a band first marks a pixel."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    images = []
+    for when in ("0", "1e30"):
+        out = os.path.join(c.tmp, f"o{len(images)}.ppm")
+        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"],
+                             {"TP2_EAGER_RETRACE": when})
+        c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+        c.require(retraced and int(retraced.group(1)) > 0, f"no pixel traced again: {err!r}")
+        images.append(read_ppm(out)[2])
+    c.expect(images[0] == images[1], "the eagerly made retrace pipeline changed the image")
+
+
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop."""
     scene = os.path.join(HERE, "render", "many-spheres.txt")
