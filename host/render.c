@@ -160,8 +160,9 @@ static bool by_precision(int binding)
 }
 
 /* A device buffer holding input buffer i of p. A CPU device that can
- * reads a big one where it lies (vk_context.c, wants_host_import): a
- * million spheres under auto copied 0.2-0.7 s of them. Otherwise it is
+ * import host memory reads a big one where it lies (vk_context.c,
+ * wants_host_import): a million spheres under auto copied 0.2-0.7 s of
+ * them. Otherwise it is
  * copied; a CPU device's memory is the host's, untouched until this copy,
  * and as huge pages filling it takes a page fault per 2 MiB instead of per
  * 4 KiB (that million: 0.67 s of copies became 0.05-0.28 s). */
@@ -1116,7 +1117,8 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     r.features = packed.features;
     r.count_rays = opt->count_rays;
     /* The retrace pass's pipelines, like the walks', are made when first
-     * needed: a scene where no pixel needs double never makes them. */
+     * needed (a scene where no pixel needs double never makes them), but
+     * for a large image its first one is made now (side_job). */
     if (create_layouts(&r) != 0)
         goto done;
     pthread_t side;
