@@ -160,22 +160,19 @@ static bool by_precision(int binding)
 }
 
 /* A device buffer holding input buffer i of p. A CPU device that can
- * import host memory reads a big one where it lies (vk_context.c,
- * wants_host_import): a million spheres under auto copied 0.2-0.7 s of
- * them. Otherwise it is
- * copied; a CPU device's memory is the host's, untouched until this copy,
- * and as huge pages filling it takes a page fault per 2 MiB instead of per
- * 4 KiB (that million: 0.67 s of copies became 0.05-0.28 s). */
+ * import host memory reads a big one (big_alloc's, 2 MiB-aligned) where it
+ * lies (vk_buffer_import): a million spheres under auto copied 0.2-0.7 s
+ * of them. Otherwise it is copied; a CPU device's memory is the host's,
+ * untouched until this copy, and as huge pages filling it takes a page
+ * fault per 2 MiB instead of per 4 KiB (that million: 0.67 s of copies
+ * became 0.05-0.28 s). */
 static int upload(const struct renderer *r, const struct packed_scene *p, int i,
                   struct vk_buffer *b)
 {
     size_t capacity = big_alloc_capacity(p->size[i]);
-    VkDeviceSize align = r->vk.host_import;
-    if (align && capacity && capacity % align == 0 && (uintptr_t)p->data[i] % align == 0) {
-        int rc = vk_buffer_import(&r->vk, p->data[i], p->size[i], capacity, b);
-        if (rc <= 0)
-            return rc;
-    }
+    int imported = capacity ? vk_buffer_import(&r->vk, p->data[i], p->size[i], capacity, b) : 1;
+    if (imported <= 0)
+        return imported;
     if (vk_buffer_create(&r->vk, p->size[i], false, b) != 0)
         return -1;
     if (r->vk.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)

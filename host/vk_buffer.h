@@ -19,10 +19,10 @@ int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
                      struct vk_buffer *b);
 
 /* A buffer of `size` bytes that the device reads from host memory in
- * place, where c->host_import is not 0: `host` is aligned to it and owns
- * `capacity` bytes, a multiple of it and at least `size`; it must outlive
- * the buffer. Returns 0, 1 if the device cannot import such a buffer (then
- * copy it), or -1 after a message. */
+ * place: `host` owns `capacity` bytes (at least `size`) and must outlive
+ * the buffer. Returns 0; 1 if the device cannot import it (c->host_import
+ * is 0, or host or capacity is not a multiple of it, or the device refuses
+ * such a buffer): then copy it; or -1 after a message. */
 int vk_buffer_import(const struct vkc *c, void *host, VkDeviceSize size,
                      VkDeviceSize capacity, struct vk_buffer *b);
 
