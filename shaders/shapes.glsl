@@ -12,7 +12,9 @@
 //  - torus and quadric: the polynomial in t has a root at 0, divided out.
 // Every surface_KIND gives the hit point moved onto the surface (removing
 // the error of o + t d), the outward unit normal, and the size of the
-// numbers that made it (what the offset of new rays scales with).
+// numbers that made it (what the offset of new rays scales with); a curved
+// kind also gives its curvature there (surface_point), from the record it
+// has already read.
 
 real max_abs(rvec3 p)
 {
@@ -111,12 +113,13 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
     return far_t > 0.0 ? far_t : NO_HIT;
 }
 
-void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale)
+void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 curving)
 {
     rvec4 sphere = object_row(i, 0);
     n = normalize(p - sphere.xyz);
     p = sphere.xyz + sphere.w * n;
     scale = max_abs(sphere.xyz) + sphere.w;
+    curving = vec2(1.0 / float(sphere.w));
 }
 
 // ---- plane: a = unit normal, distance ----------------------------------
@@ -259,13 +262,15 @@ real top_radius(int i, int kind)
     return kind == TP2_SHAPE_CYLINDER ? object_row(i, 0).w : object_row(i, 2).x;
 }
 
-void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out real scale)
+void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out real scale,
+                     out vec2 curving)
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
     rvec3 y = p - base.xyz;
     real z = dot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);
+    curving = vec2(0.0);
     if (part != 0) {
         bool top = part == 2;
         n = top ? axis.xyz : -axis.xyz;
@@ -278,6 +283,9 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
     rvec3 e = len > 0.0 ? radial / len : rvec3(0.0);
     n = len > 0.0 ? normalize(e - k * axis.xyz) : (k > 0.0 ? -axis.xyz : axis.xyz);
     p = base.xyz + z * axis.xyz + (base.w + k * z) * e;
+    // 0 along the side; 1 / (the distance to the axis) around it
+    rvec3 yp = p - base.xyz;
+    curving.y = 1.0 / float(length(yp - dot(yp, axis.xyz) * axis.xyz));
 }
 
 // ---- torus: a = center, R; b = unit axis, r ------------------------------
@@ -335,7 +343,7 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
 }
 
 // p moved onto the tube: r from the nearest point of the core circle.
-void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale)
+void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 curving)
 {
     rvec4 ca = object_row(i, 0);
     rvec4 ab = object_row(i, 1);
@@ -348,6 +356,11 @@ void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale)
     n = length(w) > 0.0 ? normalize(w) : (z >= 0.0 ? ab.xyz : -ab.xyz);
     p = ca.xyz + core + ab.w * n;
     scale = max_abs(ca.xyz) + ca.w + ab.w;
+    // 1/r around the tube; (rho - R) / (r rho) around the axis
+    rvec3 yp = p - ca.xyz;
+    float rho = float(length(yp - dot(yp, ab.xyz) * ab.xyz));
+    float tube = 1.0 / float(ab.w), ring = (rho - float(ca.w)) / (float(ab.w) * rho);
+    curving = vec2(min(tube, ring), max(tube, ring));
 }
 
 // ---- quadric: a = A B C D, b = E F G H, c.xy = I J about extra[ids.w] ----
@@ -388,7 +401,8 @@ real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
 
 // One Newton step onto Q = 0 along the gradient, which points outward
 // (toward Q > 0).
-void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
+void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale,
+                     out vec2 curving)
 {
     rvec3 ref = extra[object_ids(i).w].xyz;
     rvec3 y = p - ref;
@@ -404,6 +418,13 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale)
         n = -d;
     }
     scale = max_abs(p);
+    // either sign, up to |Hessian| / |gradient| at p (the Hessian 2M
+    // bounded by its row sums)
+    rvec3 at = 2.0 * quadric_m(i, p - ref) + g;
+    vec3 rows = vec3(abs(quadric_m(i, rvec3(1, 0, 0)))) + vec3(abs(quadric_m(i, rvec3(0, 1, 0)))) +
+                vec3(abs(quadric_m(i, rvec3(0, 0, 1))));
+    float k = 2.0 * max(rows.x, max(rows.y, rows.z)) / float(length(at));
+    curving = vec2(-k, k);
 }
 
 #endif // TP2_CURVED
@@ -516,14 +537,22 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 }
 
 // The hit point of object i at t (part from hit_object) moved onto its
-// surface, the outward unit normal there, and the scale of its numbers.
+// surface, the outward unit normal there, and the scale of its numbers;
+// and the surface's curvature there, as the least and the greatest of its
+// principal curvatures, positive where it bulges outward (a sphere of
+// radius r: 1/r, 1/r; flat faces: 0, 0). The float pass's doubt uses it
+// (signature.glsl): how far a normal computed from a point off by e may
+// turn (e times the largest magnitude), and how much a mirror or a lens
+// there may spread or focus a beam. (Where no pass uses it, the compiler
+// drops it.)
 void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
-                   out rvec3 p, out rvec3 n, out real scale)
+                   out rvec3 p, out rvec3 n, out real scale, out vec2 curving)
 {
     p = o + t * d;
+    curving = vec2(0.0);
     int kind = shape_of(i);
     if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
-        surface_sphere(i, p, n, scale);
+        surface_sphere(i, p, n, scale, curving);
     else if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
         onto_plane(object_row(i, 0), p, n, scale);
 #ifdef TP2_FACETED
@@ -537,58 +566,16 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
 #ifdef TP2_CURVED
     else if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
              (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE))
-        surface_tapered(i, top_radius(i, kind), part, p, n, scale);
+        surface_tapered(i, top_radius(i, kind), part, p, n, scale, curving);
     else if (USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS)
-        surface_torus(i, p, n, scale);
+        surface_torus(i, p, n, scale, curving);
     else if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC)
-        surface_quadric(i, d, p, n, scale);
+        surface_quadric(i, d, p, n, scale, curving);
 #endif
     else {
         n = -d;
         scale = max_abs(p);
     }
-}
-
-// The surface's curvature at p (part from hit_object), as the least and
-// the greatest of its principal curvatures, positive where it bulges
-// outward (a sphere of radius r: 1/r, 1/r; flat faces: 0, 0). The float
-// pass's doubt uses it (signature.glsl): how far a normal computed from a
-// point off by e may turn (e times the largest magnitude), and how much a
-// mirror or a lens there may spread or focus a beam.
-vec2 surface_curvature(int i, int part, rvec3 p)
-{
-    int kind = shape_of(i);
-    if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
-        return vec2(1.0 / float(object_row(i, 0).w));
-#ifdef TP2_CURVED
-    if (((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||
-         (USES_SHAPE(TP2_SHAPE_CONE) && kind == TP2_SHAPE_CONE)) && part == 0) {
-        rvec4 base = object_row(i, 0);
-        rvec4 axis = object_row(i, 1);
-        rvec3 y = p - base.xyz;
-        return vec2(0.0, 1.0 / float(length(y - dot(y, axis.xyz) * axis.xyz)));
-    }
-    if (USES_SHAPE(TP2_SHAPE_TORUS) && kind == TP2_SHAPE_TORUS) {
-        // 1/r around the tube; (rho - R) / (r rho) around the axis
-        rvec4 ca = object_row(i, 0);
-        rvec4 ab = object_row(i, 1);
-        rvec3 y = p - ca.xyz;
-        float rho = float(length(y - dot(y, ab.xyz) * ab.xyz));
-        float tube = 1.0 / float(ab.w), ring = (rho - float(ca.w)) / (float(ab.w) * rho);
-        return vec2(min(tube, ring), max(tube, ring));
-    }
-    if (USES_SHAPE(TP2_SHAPE_QUADRIC) && kind == TP2_SHAPE_QUADRIC) {
-        // either sign, up to |Hessian| / |gradient| (the Hessian 2M bounded
-        // by its row sums)
-        rvec3 y = p - extra[object_ids(i).w].xyz;
-        rvec3 grad = 2.0 * quadric_m(i, y) + quadric_g(i);
-        vec3 rows = vec3(abs(quadric_m(i, rvec3(1, 0, 0)))) + vec3(abs(quadric_m(i, rvec3(0, 1, 0)))) +
-                    vec3(abs(quadric_m(i, rvec3(0, 0, 1))));
-        float k = 2.0 * max(rows.x, max(rows.y, rows.z)) / float(length(grad));
-        return vec2(-k, k);
-    }
-#endif
-    return vec2(0.0);
 }
 
 // How many times a plain intersection's rounding object i's may have: a

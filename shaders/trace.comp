@@ -105,13 +105,12 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     Shading sh;
     rvec3 n;
     real scale;
-    surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale);
+    vec2 curving; // the surface's, as the ray meets it (from inside, hollow)
+    surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale, curving);
     bool entering = dot(ray.dir, n) < 0.0;
     // How far the hit may be off, and its footprint (signature.glsl).
     float cosine = abs(float(dot(ray.dir, n)));
-    // the surface's curvature as the ray meets it: from inside, hollow
-    vec2 curving = SIGNATURES ? clamp(surface_curvature(h.object, h.part, sh.p), -1e15, 1e15)
-                              : vec2(0.0);
+    curving = clamp(curving, -1e15, 1e15);
     curving = entering ? curving : -curving.yx;
     float bend = max(abs(curving.x), abs(curving.y));
     float sizes = hit_rounding(h.object) * float(scale + max_abs(ray.origin));
