@@ -7,6 +7,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -48,37 +49,52 @@ struct bin {
     double cmin[3], cmax[3];
 };
 
-/* The largest float <= x (FLT_MAX for x above float range: the exact box
- * then lies beyond anything finite, and the upper bound becomes +inf). */
-static float float_down(double x)
+/* The float next to finite f toward -inf (dir < 0) or +inf (dir > 0),
+ * by its bits: prim_init steps every box bound, and nextafterf was a libm
+ * call per bound. A float's bits, read as an integer, grow with its
+ * magnitude; zero of either sign steps to the least subnormal. */
+static float float_step(float f, int dir)
 {
-    if (!(x >= -(double)FLT_MAX)) /* also NaN: widen to the whole line */
+    if (f == 0)
+        return dir < 0 ? -FLT_TRUE_MIN : FLT_TRUE_MIN;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits += (f > 0) == (dir > 0) ? 1 : -1;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* The largest float < x: -inf when there is none (x <= -FLT_MAX, or NaN,
+ * which widens the box to the whole line). Strictly below, so that a box
+ * bound rounded to nearest in double still lies inside: the float box
+ * contains the exact shape. */
+static float float_below(double x)
+{
+    if (!(x > -(double)FLT_MAX))
         return -INFINITY;
     if (x > (double)FLT_MAX)
         return FLT_MAX;
-    float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+    float f = (float)x; /* to nearest: a neighbour of x, or x itself */
+    return (double)f < x ? f : float_step(f, -1);
 }
 
-/* The smallest float >= x. */
-static float float_up(double x)
+/* The smallest float > x: +inf when there is none. */
+static float float_above(double x)
 {
-    if (!(x <= (double)FLT_MAX))
+    if (!(x < (double)FLT_MAX))
         return INFINITY;
     if (x < -(double)FLT_MAX)
         return -FLT_MAX;
     float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
+    return (double)f > x ? f : float_step(f, 1);
 }
 
-/* Fills p from one box (lo, hi). Its bounds were rounded to nearest in
- * double, so stepping one double outward before rounding to float makes
- * the float box contain the exact shape; its center is the key. */
+/* Fills p from one box (lo, hi); its center is the key. */
 static void prim_init(struct prim *p, const double box[6], uint32_t index)
 {
     for (int a = 0; a < 3; a++) {
-        p->lo[a] = float_down(nextafter(box[a], -INFINITY));
-        p->hi[a] = float_up(nextafter(box[a + 3], INFINITY));
+        p->lo[a] = float_below(box[a]);
+        p->hi[a] = float_above(box[a + 3]);
         p->c[a] = box[a] / 2 + box[a + 3] / 2;
     }
     p->index = index;
@@ -395,18 +411,18 @@ static int split_node(struct prim *prims, const struct task *t,
     return 1;
 }
 
-/* Builds the subtree of task root into nodes[] numbered from 0 (root's
- * own node; root.node is ignored), depth-first with an explicit stack,
- * left child first, so subtrees sit together. A task at depth d finds at
- * most d right siblings of its ancestors waiting, and pushes two only when
- * d < BVH_MAX_NODE_DEPTH, so the stack never exceeds TP2_BVH_MAX_DEPTH.
- * Returns the number of nodes made. */
-static size_t build_subtree(struct prim *prims, struct task root,
+/* Builds the subtree of task root, depth-first with an explicit stack,
+ * left child first, so subtrees sit together: its root at nodes[root.node],
+ * the k-th node made after it at nodes[base + k - 1] (for a whole tree,
+ * root.node 0 and base 1). A task at depth d finds at most d right
+ * siblings of its ancestors waiting, and pushes two only when d <
+ * BVH_MAX_NODE_DEPTH, so the stack never exceeds TP2_BVH_MAX_DEPTH.
+ * Returns the number of nodes made, its root included. */
+static size_t build_subtree(struct prim *prims, struct task root, size_t base,
                             struct bvh_node *nodes)
 {
     struct task stack[TP2_BVH_MAX_DEPTH];
     int sp = 0;
-    root.node = 0;
     stack[sp++] = root;
     size_t node_count = 1;
     while (sp > 0) {
@@ -415,7 +431,7 @@ static size_t build_subtree(struct prim *prims, struct task root,
         struct task kids[2];
         if (!split_node(prims, &t, node, kids))
             continue;
-        uint32_t left = (uint32_t)node_count;
+        uint32_t left = (uint32_t)(base + node_count - 1);
         node_count += 2;
         node->first = (int32_t)left;
         node->count = 0;
@@ -435,6 +451,7 @@ static size_t build_subtree(struct prim *prims, struct task root,
 struct half {
     struct prim *prims;
     struct task root;
+    size_t base;
     struct bvh_node *nodes;
     size_t count;
 };
@@ -442,58 +459,48 @@ struct half {
 static void *build_half(void *arg)
 {
     struct half *h = arg;
-    h->count = build_subtree(h->prims, h->root, h->nodes);
+    h->count = build_subtree(h->prims, h->root, h->base, h->nodes);
     return NULL;
 }
 
-/* Where node i of a half lands in the whole tree: its root next to its
- * sibling (nodes 1 and 2), the rest after both roots, left half first. */
-static size_t half_place(size_t i, size_t root, size_t base)
-{
-    return i == 0 ? root : base + i - 1;
-}
-
-static void place_half(const struct half *h, size_t root, size_t base,
-                       struct bvh_node *out)
-{
-    for (size_t i = 0; i < h->count; i++) {
-        struct bvh_node node = h->nodes[i];
-        if (node.count == 0)
-            node.first = (int32_t)half_place((size_t)node.first, root, base);
-        out[half_place(i, root, base)] = node;
-    }
-}
-
 /* The tree below the root's split, its two halves on two threads (the
- * boxes of one half are a range of prims no other thread touches): the
- * same nodes as one thread makes, numbered left half first. Returns the
- * node count, or 0 when out of memory. */
+ * boxes of one half are a range of prims no other thread touches), built
+ * where they belong in nodes[] (2 n - 1 of them): the same nodes, in the
+ * same order, as one thread makes. The roots of the halves are nodes 1 and
+ * 2, and the left half's other nodes follow from 3 on. The right half's
+ * place depends on how many nodes the left one makes, so it is built past
+ * the most the left one can make (2 m - 1 for m boxes), which fits, and
+ * then moved down next to it. Returns the node count. */
 static size_t build_halves(struct prim *prims, struct task kids[2],
                            struct bvh_node *nodes)
 {
+    size_t left_most = 2 * (size_t)(kids[0].end - kids[0].begin) - 1;
+    size_t right_base = 3 + left_most - 1;
     struct half h[2];
     for (int k = 0; k < 2; k++) {
         kids[k].depth = 1;
-        h[k] = (struct half){prims, kids[k], NULL, 0};
-        h[k].nodes = big_alloc((2 * (size_t)(kids[k].end - kids[k].begin) - 1) *
-                            sizeof *h[k].nodes);
+        kids[k].node = 1 + (uint32_t)k;
+        h[k] = (struct half){prims, kids[k], k == 0 ? 3 : right_base, nodes, 0};
     }
-    size_t total = 0;
-    if (h[0].nodes && h[1].nodes) {
-        pthread_t thread;
-        bool threaded = pthread_create(&thread, NULL, build_half, &h[0]) == 0;
-        if (!threaded)
-            build_half(&h[0]);
-        build_half(&h[1]);
-        if (threaded)
-            pthread_join(thread, NULL);
-        place_half(&h[0], 1, 3, nodes);
-        place_half(&h[1], 2, 3 + h[0].count - 1, nodes);
-        total = 1 + h[0].count + h[1].count;
+    pthread_t thread;
+    bool threaded = pthread_create(&thread, NULL, build_half, &h[0]) == 0;
+    if (!threaded)
+        build_half(&h[0]);
+    build_half(&h[1]);
+    if (threaded)
+        pthread_join(thread, NULL);
+
+    size_t to = 3 + h[0].count - 1, moved = h[1].count - 1;
+    if (to < right_base) {
+        memmove(&nodes[to], &nodes[right_base], moved * sizeof *nodes);
+        int32_t shift = (int32_t)(right_base - to);
+        if (nodes[2].count == 0)
+            nodes[2].first -= shift;
+        for (size_t i = to; i < to + moved; i++)
+            if (nodes[i].count == 0)
+                nodes[i].first -= shift;
     }
-    free(h[0].nodes);
-    free(h[1].nodes);
-    return total;
+    return 1 + h[0].count + h[1].count;
 }
 
 /* Two threads where there are two cores, unless TP2_BVH_THREADS=1 (so
@@ -536,12 +543,7 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
         b->nodes[0].count = 0;
         node_count = build_halves(prims, kids, b->nodes);
     } else {
-        node_count = build_subtree(prims, root, b->nodes);
-    }
-    if (node_count == 0) {
-        free(prims);
-        bvh_free(b);
-        return -1;
+        node_count = build_subtree(prims, root, 1, b->nodes);
     }
 
     for (size_t i = 0; i < n; i++)

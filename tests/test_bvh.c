@@ -2,6 +2,7 @@
  * contract and against a linear scan. The last line is "N passed, M
  * failed"; the exit status is 0 only when nothing failed. */
 #define _POSIX_C_SOURCE 200809L /* setenv */
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
@@ -759,6 +760,33 @@ static void check_edges(void)
                b.nodes[0].hi[2] > 0,
            "edges: a single sphere's bounds strictly contain it");
     bvh_free(&b);
+
+    /* The tightest float box strictly outside the exact one: each bound
+     * moves to the next float beyond it, or stays put where it lies
+     * between two floats; past float range it becomes infinite. */
+    struct {
+        double lo, hi;
+        float want_lo, want_hi;
+    } bounds[] = {
+        {1.0, 2.0, 0x1.fffffep-1f, 0x1.000002p+1f},
+        {0.0, 0.0, -FLT_TRUE_MIN, FLT_TRUE_MIN},
+        {-0.0, 0x1p-200, -FLT_TRUE_MIN, FLT_TRUE_MIN},
+        {0.1, 0.1, 0x1.999998p-4f, 0x1.99999ap-4f}, /* 0.1 lies between floats */
+        {-FLT_MAX, FLT_MAX, -INFINITY, INFINITY},
+        {1e300, INFINITY, FLT_MAX, INFINITY},
+        {-INFINITY, -1e300, -INFINITY, -FLT_MAX},
+    };
+    for (size_t i = 0; i < sizeof bounds / sizeof bounds[0]; i++) {
+        double box[1][6] = {{bounds[i].lo, bounds[i].lo, bounds[i].lo, bounds[i].hi,
+                             bounds[i].hi, bounds[i].hi}};
+        bool exact = bvh_build((const double (*)[6])box, 1, &b) == 0 && b.node_count == 1;
+        for (int a = 0; exact && a < 3; a++)
+            exact = b.nodes[0].lo[a] == bounds[i].want_lo &&
+                    b.nodes[0].hi[a] == bounds[i].want_hi;
+        expect(exact, "edges: box [%a, %a] rounds out to [%a, %a]", bounds[i].lo, bounds[i].hi,
+               (double)bounds[i].want_lo, (double)bounds[i].want_hi);
+        bvh_free(&b);
+    }
 
     /* Beyond what the index type can hold: refused before reading. */
     memset(&b, 0xab, sizeof b);
