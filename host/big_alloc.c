@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <unistd.h>
 
 #define HUGE_PAGE ((size_t)2 << 20)
 
@@ -28,6 +29,20 @@ void *big_alloc(size_t n)
         madvise(p, rounded, MADV_HUGEPAGE); /* advice: failure changes nothing */
 #endif
     return p;
+}
+
+void *big_realloc(void *p, size_t n)
+{
+    void *bigger = realloc(p, n);
+#ifdef MADV_HUGEPAGE
+    if (bigger && n >= HUGE_PAGE) {
+        uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE);
+        uintptr_t begin = (uintptr_t)bigger / page * page;
+        uintptr_t end = ((uintptr_t)bigger + n + page - 1) / page * page;
+        madvise((void *)begin, end - begin, MADV_HUGEPAGE); /* advice only */
+    }
+#endif
+    return bigger;
 }
 
 size_t big_alloc_capacity(size_t n)

@@ -11,6 +11,13 @@
  * NULL when n is 0 or out of memory. */
 void *big_alloc(size_t n);
 
+/* Like realloc, for arrays that grow by doubling as a file is read (not
+ * for big_alloc's blocks): once the block is 2 MiB or more, the whole of
+ * it is offered as transparent huge pages. Whole, so that its mapping
+ * stays one piece and realloc can go on moving it without copying
+ * (mremap); its 2 MiB-aligned stretches then fault in a page at a time. */
+void *big_realloc(void *p, size_t n);
+
 /* The bytes a block of big_alloc(n) owns when it is aligned to 2 MiB (n
  * rounded up to a multiple of 2 MiB), or 0 when it is plain malloc's. */
 size_t big_alloc_capacity(size_t n);

@@ -158,8 +158,10 @@ static void skip_blank(struct lexer *lx)
  * a word, so a parser can name it. */
 static size_t number_length(const struct lexer *lx, size_t pos, double *value)
 {
-    if (pos >= lx->len || !strchr("0123456789+-.", lx->buf[pos]) ||
-        lx->buf[pos] == '\0')
+    if (pos >= lx->len)
+        return 0;
+    char c = lx->buf[pos];
+    if (!(c >= '0' && c <= '9') && c != '+' && c != '-' && c != '.')
         return 0;
     char *end = NULL;
     double v = decimal_read(lx->buf + pos, &end);
@@ -248,7 +250,10 @@ static void lex_number(struct lexer *lx, struct token *tok, size_t n,
     tok->kind = TOKEN_NUMBER;
     tok->value = value;
     set_text(lx, tok, n);
-    advance(lx, n);
+    /* No newline to count: a number is what strtod reads from a digit,
+     * sign or '.', and it skips white space only before all of these. */
+    lx->pos += n;
+    lx->col += n;
 }
 
 void lexer_next(struct lexer *lx, struct token *tok)

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "decimal.h"
 #include "lexer.h"
 #include "vec3.h"
@@ -57,7 +58,7 @@ static int grow(struct obj_reader *r, void **arr, size_t *cap, size_t need, size
         ncap *= 2;
     if (ncap < need || ncap > SIZE_MAX / elem)
         return fail_oom(r);
-    void *bigger = realloc(*arr, ncap * elem);
+    void *bigger = big_realloc(*arr, ncap * elem);
     if (!bigger)
         return fail_oom(r);
     *arr = bigger;

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "lexer.h"
 #include "pigments.h"
 #include "scene_reader.h"
@@ -255,7 +256,7 @@ static void *grow(struct scene_reader *p, void *arr, size_t *cap, size_t need,
         fail_oom(p);
         return NULL;
     }
-    void *bigger = realloc(arr, ncap * elem);
+    void *bigger = big_realloc(arr, ncap * elem);
     if (!bigger) {
         fail_oom(p);
         return NULL;
