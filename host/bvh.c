@@ -513,7 +513,17 @@ static bool two_threads(void)
     return sysconf(_SC_NPROCESSORS_ONLN) > 1;
 }
 
+static void box_of_array(const void *source, size_t i, double box[6])
+{
+    memcpy(box, ((const double (*)[6])source)[i], 6 * sizeof *box);
+}
+
 int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
+{
+    return bvh_build_from(box_of_array, boxes, n, b);
+}
+
+int bvh_build_from(bvh_box_fn *box_at, const void *source, size_t n, struct bvh *b)
 {
     memset(b, 0, sizeof *b);
     if (n == 0)
@@ -530,8 +540,11 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b)
         bvh_free(b);
         return -1;
     }
-    for (size_t i = 0; i < n; i++)
-        prim_init(&prims[i], boxes[i], (uint32_t)i);
+    for (size_t i = 0; i < n; i++) {
+        double box[6];
+        box_at(source, i, box);
+        prim_init(&prims[i], box, (uint32_t)i);
+    }
 
     struct task root = {.node = 0, .begin = 0, .end = (uint32_t)n};
     task_centroids(prims, &root);

@@ -83,6 +83,13 @@ int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out);
  * n == 0. */
 int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b);
 
+/* The same, with box i of the n written by box_at(source, i, box) as the
+ * build first reads it (each once, in order), so that a caller need not
+ * keep an array of them: for a million objects that array was 48 MB of
+ * fresh memory, written once and read once. */
+typedef void bvh_box_fn(const void *source, size_t i, double box[6]);
+int bvh_build_from(bvh_box_fn *box_at, const void *source, size_t n, struct bvh *b);
+
 /* Frees the arrays and zeroes b; safe on a zeroed one. */
 void bvh_free(struct bvh *b);
 

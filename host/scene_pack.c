@@ -226,6 +226,20 @@ static int single_kind(int kinds)
     return -1;
 }
 
+/* The bounded primitives, whose boxes bvh_build_from asks for one by one. */
+struct bounded_prims {
+    const struct scene *s;
+    const struct prim_ref *refs;
+};
+
+static void bounded_box(const void *source, size_t i, double box[6])
+{
+    const struct bounded_prims *b = source;
+    const struct prim_ref *ref = &b->refs[i];
+    const struct scene_object *o = &b->s->objects[ref->object];
+    shape_kinds[o->kind].bounds(scene_object_reals(b->s, o), o->count, ref->k, box, box + 3);
+}
+
 /* Slots: every object's primitives, the bounded ones first in the BVH's
  * order, then the unbounded ones in scene order. */
 static int layout_objects(const struct scene *s, struct layout *lay,
@@ -240,11 +254,10 @@ static int layout_objects(const struct scene *s, struct layout *lay,
         lay->nextra += kind->extra_rows(p, o->count);
     }
     size_t n = lay->nprims ? lay->nprims : 1;
-    double (*boxes)[6] = big_alloc(n * sizeof *boxes);
     struct prim_ref *bounded = big_alloc(n * sizeof *bounded);
     lay->slots = big_alloc(n * sizeof *lay->slots);
     int rc = -1;
-    if (boxes && bounded && lay->slots) {
+    if (bounded && lay->slots) {
         size_t nb = 0, nu = lay->nprims;
         for (size_t i = 0; i < s->nobjects; i++) {
             const struct scene_object *o = &s->objects[i];
@@ -253,7 +266,8 @@ static int layout_objects(const struct scene *s, struct layout *lay,
             size_t count = kind->primitives(p, o->count);
             for (size_t k = 0; k < count; k++) {
                 struct prim_ref ref = {i, k};
-                if (kind->bounds(p, o->count, k, boxes[nb], boxes[nb] + 3)) {
+                double lo[3], hi[3]; /* asked for again by the build */
+                if (kind->bounds(p, o->count, k, lo, hi)) {
                     bounded[nb++] = ref;
                     lay->bounded_kinds |= 1 << kind->gpu_kind;
                 } else {
@@ -270,7 +284,8 @@ static int layout_objects(const struct scene *s, struct layout *lay,
         }
         lay->nbounded = nb;
         double t0 = clock_seconds();
-        int built = bvh_build((const double (*)[6])boxes, nb, &lay->bvh);
+        struct bounded_prims source = {s, bounded};
+        int built = bvh_build_from(bounded_box, &source, nb, &lay->bvh);
         *bvh_time = clock_seconds() - t0;
         if (built == 0) {
             for (size_t slot = 0; slot < nb; slot++)
@@ -278,7 +293,6 @@ static int layout_objects(const struct scene *s, struct layout *lay,
             rc = 0;
         }
     }
-    free(boxes);
     free(bounded);
     return rc;
 }
