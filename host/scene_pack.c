@@ -154,20 +154,21 @@ static void pigment_record(const struct scene *s, const struct layout *lay, size
     }
 }
 
-/* Primitive slot's record and its extra rows, whose first is *extra_at. */
-/* Starts loading what object_record will read for slot, well before it
- * does: slots are in BVH order, so the objects and their numbers are
+/* Starts loading what object_record will read for a slot PREFETCH_AHEAD
+ * slots on: slots are in BVH order, so the objects and their numbers are
  * read in no order, and each read waited on memory. The object's record
- * AHEAD slots on, its numbers half as far (by then the record is there). */
-#define AHEAD 32
+ * first, its numbers at half that distance (by then the record is in). */
+#define PREFETCH_AHEAD 32
 static void prefetch_slot(const struct scene *s, const struct layout *lay, size_t slot)
 {
-    if (slot + AHEAD < lay->nprims)
-        __builtin_prefetch(&s->objects[lay->slots[slot + AHEAD].object]);
-    if (slot + AHEAD / 2 < lay->nprims)
-        __builtin_prefetch(scene_object_reals(s, &s->objects[lay->slots[slot + AHEAD / 2].object]));
+    size_t far = slot + PREFETCH_AHEAD, near = slot + PREFETCH_AHEAD / 2;
+    if (far < lay->nprims)
+        __builtin_prefetch(&s->objects[lay->slots[far].object]);
+    if (near < lay->nprims)
+        __builtin_prefetch(scene_object_reals(s, &s->objects[lay->slots[near].object]));
 }
 
+/* Primitive slot's record and its extra rows, whose first is *extra_at. */
 static void object_record(const struct scene *s, const struct layout *lay, size_t slot,
                           struct shape_record *rec, double (*extra)[4], size_t *extra_at,
                           int32_t ids[4])
