@@ -633,8 +633,9 @@ static bool same_shape(const struct bvh *a, const struct bvh *b)
     return true;
 }
 
-/* Large sets are built on two threads, each half of the tree on its own:
- * the tree must be the one a single thread builds. */
+/* Large sets are built on two threads, each half of the tree on its own,
+ * in place: the tree must be the one a single thread builds, node for
+ * node in the same numbering. */
 static void check_threads_agree(const char *name, const double (*s)[4], size_t n,
                                 const struct bvh *b)
 {
@@ -642,10 +643,61 @@ static void check_threads_agree(const char *name, const double (*s)[4], size_t n
     setenv("TP2_BVH_THREADS", "1", 1);
     int rc = sphere_bvh_build(s, n, &one);
     unsetenv("TP2_BVH_THREADS");
-    expect(rc == 0 && same_shape(b, &one) &&
+    expect(rc == 0 && same_shape(b, &one) && one.node_count == b->node_count &&
+               memcmp(one.nodes, b->nodes, b->node_count * sizeof *b->nodes) == 0 &&
                memcmp(one.order, b->order, n * sizeof *b->order) == 0,
-           "%s: one thread builds the same tree as two", name);
+           "%s: one thread builds the same tree as two, node for node", name);
     bvh_free(&one);
+}
+
+/* bvh_build_from's source: the boxes, and which it was asked for, in
+ * what order. */
+struct box_source {
+    const double (*boxes)[6];
+    size_t asked, out_of_order;
+};
+
+static void box_from_source(const void *source, size_t i, double box[6])
+{
+    struct box_source *b = (struct box_source *)source;
+    if (i != b->asked)
+        b->out_of_order++;
+    b->asked++;
+    memcpy(box, b->boxes[i], sizeof b->boxes[i]);
+}
+
+/* Boxes handed over one by one build the tree an array of them builds,
+ * each asked for once, in order. */
+static void check_build_from(void)
+{
+    size_t n = 100000; /* two threads */
+    double (*s)[4] = make_set(SET_MIXED, n, 77);
+    double (*boxes)[6] = malloc(n * sizeof *boxes);
+    if (!s || !boxes) {
+        fputs("test_bvh: out of memory\n", stderr);
+        exit(2);
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int a = 0; a < 3; a++) {
+            boxes[i][a] = s[i][a] - fabs(s[i][3]);
+            boxes[i][a + 3] = s[i][a] + fabs(s[i][3]);
+        }
+    struct bvh from_array, from_source;
+    struct box_source source = {(const double (*)[6])boxes, 0, 0};
+    bool built = bvh_build((const double (*)[6])boxes, n, &from_array) == 0 &&
+                 bvh_build_from(box_from_source, &source, n, &from_source) == 0;
+    expect(built && from_array.node_count == from_source.node_count &&
+               memcmp(from_array.nodes, from_source.nodes,
+                      from_array.node_count * sizeof *from_array.nodes) == 0 &&
+               memcmp(from_array.order, from_source.order, n * sizeof *from_array.order) == 0,
+           "build_from: the same tree as from an array");
+    expect(source.asked == n && source.out_of_order == 0,
+           "build_from: each of %zu boxes asked for once, in order (%zu asks, %zu out of "
+           "order)", n, source.asked, source.out_of_order);
+    bvh_free(&from_array);
+    bvh_free(&from_source);
+    free(boxes);
+    free(s);
 }
 
 /* ---- Driver ---- */
@@ -837,6 +889,7 @@ int main(void)
         {"uniform-1000000", SET_UNIFORM, 1000000, 20},
     };
     check_edges();
+    check_build_from();
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i], 1000 + i);
     check_quality();
