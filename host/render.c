@@ -169,8 +169,8 @@ static bool by_precision(int binding)
 static int upload(const struct renderer *r, const struct packed_scene *p, int i,
                   struct vk_buffer *b)
 {
-    size_t capacity = big_alloc_capacity(p->size[i]);
-    int imported = capacity ? vk_buffer_import(&r->vk, p->data[i], p->size[i], capacity, b) : 1;
+    int imported = vk_buffer_import(&r->vk, p->data[i], p->size[i],
+                                    big_alloc_capacity(p->size[i]), b);
     if (imported <= 0)
         return imported;
     if (vk_buffer_create(&r->vk, p->size[i], false, b) != 0)

@@ -72,7 +72,7 @@ int vk_buffer_import(const struct vkc *c, void *host, VkDeviceSize size,
     const VkExternalMemoryHandleTypeFlagBits handle =
         VK_EXTERNAL_MEMORY_HANDLE_TYPE_HOST_ALLOCATION_BIT_EXT;
     VkDeviceSize align = c->host_import;
-    if (!align || capacity % align != 0 || (uintptr_t)host % align != 0)
+    if (!align || capacity == 0 || capacity % align != 0 || (uintptr_t)host % align != 0)
         return 1;
     VkPhysicalDeviceExternalBufferInfo query = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_EXTERNAL_BUFFER_INFO,

@@ -21,8 +21,8 @@ int vk_buffer_create(const struct vkc *c, VkDeviceSize size, bool readback,
 /* A buffer of `size` bytes that the device reads from host memory in
  * place: `host` owns `capacity` bytes (at least `size`) and must outlive
  * the buffer. Returns 0; 1 if the device cannot import it (c->host_import
- * is 0, or host or capacity is not a multiple of it, or the device refuses
- * such a buffer): then copy it; or -1 after a message. */
+ * is 0, capacity is 0, or host or capacity is not a multiple of it, or the
+ * device refuses such a buffer): then copy it; or -1 after a message. */
 int vk_buffer_import(const struct vkc *c, void *host, VkDeviceSize size,
                      VkDeviceSize capacity, struct vk_buffer *b);
 
