@@ -147,6 +147,8 @@ static int read_number(struct scene_reader *p, double *v, struct token *at)
 
 int read_numbers(struct scene_reader *p, double *v, int n, struct token *at)
 {
+    if (at) /* where the first number is, even to a compiler that cannot see n > 0 */
+        *at = p->tok;
     for (int i = 0; i < n; i++)
         if (read_number(p, &v[i], i == 0 ? at : NULL))
             return -1;
