@@ -253,6 +253,16 @@ static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
                 samples == 1 ? "it is" : "they are");
 }
 
+/* Whether shadow rays toward the arealight test the last sample's occluder
+ * first (trace.comp): the image is the same either way, and the
+ * environment variable TP2_OCCLUDER_HINT=0 turns it off so that a test can
+ * show it. */
+static bool occluder_hint(void)
+{
+    const char *env = getenv("TP2_OCCLUDER_HINT");
+    return !(env && strcmp(env, "0") == 0);
+}
+
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
  * (VkBool32) and ints are all 32-bit words. */
 static void spec_values(const struct scene_features *f, const struct tracer *t,
@@ -275,6 +285,7 @@ static void spec_values(const struct scene_features *f, const struct tracer *t,
     v[TP2_SPEC_SAMPLES] = f->samples;
     v[TP2_SPEC_BVH] = f->bvh;
     v[TP2_SPEC_LOOP_GUARD] = loop_guard;
+    v[TP2_SPEC_OCCLUDER_HINT] = occluder_hint();
     for (uint32_t id = 0; id < TP2_SPEC_COUNT; id++)
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }

@@ -58,8 +58,10 @@ rvec3 safe_inverse(rvec3 d)
 }
 
 // The nearest object with 0 < t < tmax, or, if any_hit, any one of them,
-// for a ray from o along unit d that starts on `start`. Bounded objects sit
-// in BVH order at the start of objects[], the unbounded ones after them.
+// for a ray from o along unit d that starts on `start`; object `first`
+// (unless -1) is tested before all others, as a likely any-hit. Bounded
+// objects sit in BVH order at the start of objects[], the unbounded ones
+// after them.
 //
 // One loop tests one object per step, and between the ranges of objects
 // to test, walks the BVH to its next leaf (nearest first), the unbounded
@@ -71,7 +73,7 @@ rvec3 safe_inverse(rvec3 d)
 // for the lanes testing objects beside them (README "Speed": 11% on BVH
 // scenes on lavapipe; testing a leaf's objects in an inner loop as well,
 // or popping there too, was no better).
-Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
+Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first)
 {
     Hit h = Hit(tmax, -1, 0, tmax, -1);
     int bounded = frame.geometry.x;
@@ -80,14 +82,15 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
     int stack_node[TP2_BVH_STACK];
     real stack_t[TP2_BVH_STACK];
     int sp = 0;
-    int node = USE_BVH ? 0 : -1; // the root: its children's boxes are tested
-    int i = 0; // objects [i, end) come next
-    int end = USE_BVH ? 0 : total;
+    int node = USE_BVH && first < 0 ? 0 : -1; // the root: its children's boxes are tested
+    int i = max(first, 0); // objects [i, end) come next
+    int end = first >= 0 ? first + 1 : USE_BVH ? 0 : total;
+    bool all_left = first >= 0; // object `first` alone, then the root (or all objects)
     bool unbounded_left = true;
-    // Each object is tested once (a one-leaf tree's twice), each node
-    // visited and each link popped at most once, the unbounded range set
-    // once.
-    int steps = total + TP2_BVH_LEAF_MAX + 2 * frame.geometry.z + 2;
+    // Each object is tested once (a one-leaf tree's twice, `first` twice),
+    // each node visited and each link popped at most once, the first and
+    // the unbounded ranges set once.
+    int steps = total + TP2_BVH_LEAF_MAX + 2 * frame.geometry.z + 4;
     for (int step = 0; step < steps; ++step) {
         int link = 0;       // a child to enter after this step, if `enter`
         bool enter = false;
@@ -127,6 +130,15 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit)
             --sp;
             link = stack_node[sp];
             enter = stack_t[sp] < h.t;
+        } else if (all_left) {
+            all_left = false;
+            if (USE_BVH) {
+                node = 0;
+            } else {
+                i = 0;
+                end = total;
+                unbounded_left = false;
+            }
         } else if (USE_BVH && unbounded_left) {
             i = bounded;
             end = total;

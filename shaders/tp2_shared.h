@@ -64,7 +64,8 @@
 #define TP2_SPEC_WALK 13      /* int: TP2_WALK_*, what a pass does with walks */
 #define TP2_SPEC_SIGNATURES 14 /* bool: record each pixel's decisions (signature.glsl) */
 #define TP2_SPEC_PIXEL_LIST 15 /* bool: trace the listed pixels, not the whole band */
-#define TP2_SPEC_COUNT 16
+#define TP2_SPEC_OCCLUDER_HINT 16 /* bool: an arealight sample's shadow ray tests the last one's occluder first */
+#define TP2_SPEC_COUNT 17
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0

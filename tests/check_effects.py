@@ -161,6 +161,36 @@ def case_arealight_soft_shadow(c):
     c.expect(worst < 1e-4, f"a tiny area light differs from the point light by {worst}")
 
 
+def occluders_scene():
+    """A floor under a 5 x 5 grid of spheres (through the BVH by default)
+    and a wide arealight: many points see some of its samples blocked by
+    one sphere, some by another, some not at all."""
+    spheres = "".join(f"0 0 sphere {x} {y} 1.5 0.45\n"
+                      for x in (-2, -1, 0, 1, 2) for y in (-2, -1, 0, 1, 2))
+    return ("0 -3 9\n0 0 0\n0 0 1\n60\n"
+            "2\n0 0 0 0.2 0.2 0.2 0 0 0\n0.5 0.3 6 1 1 1 1 0 0\n"
+            "1\nsolid 1 1 1\n1\n1 1 0 1 0 0 0\n"
+            "26\n" + spheres + "0 0 plane 0 0 1 0\narealight 1 2 16\n")
+
+
+def case_occluder_hint_same_image(c):
+    """Shadow rays toward the arealight test the last sample's occluder
+    first: any occluder decides alike, so the image is the same bytes as
+    without the hint (TP2_OCCLUDER_HINT=0), through the BVH and the loop."""
+    scene = scene_file(c.tmp, "s.txt", occluders_scene())
+    for name, bvh_min in (("bvh", "1"), ("loop", "100000")):
+        images = []
+        for hint in ("1", "0"):
+            out = os.path.join(c.tmp, f"{name}{hint}.ppm")
+            status, _, err = run(c.tp2, ["--bvh-min", bvh_min, scene, out, "64", "48"],
+                                 {"TP2_OCCLUDER_HINT": hint})
+            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+            images.append(read_ppm(out)[2])
+        partial = sum(60 < v < 250 for v in images[0][0::3])
+        c.expect(partial >= 200, f"{name}: only {partial} pixels in a penumbra")
+        c.expect(images[0] == images[1], f"{name}: the occluder hint changed the image")
+
+
 def mirror_chain(kr, ambient, bailout, depth=10, background=0.5):
     """SPEC 4 with tp2's pruning for a ray bouncing between two facing
     mirrors of reflectance kr lit only by ambient: ray k has weight kr^k; a
