@@ -70,7 +70,7 @@ rvec3 safe_inverse(rvec3 d)
 // object test appears once, so each kind's code is compiled once (see
 // trace_step). A descent from a node to the leaf it leads to is one step
 // (an inner loop): lanes descending no longer pay an object test per node
-// for the lanes testing objects beside them (README "Speed": 11% on BVH
+// for the lanes testing objects beside them (README "Performance": 11% on BVH
 // scenes on lavapipe; testing a leaf's objects in an inner loop as well,
 // or popping there too, was no better).
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first)
