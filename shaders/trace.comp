@@ -139,7 +139,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
     vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;
     int samples = light_samples(fin);
-    int occluder = -1; // the last sample's
+    int occluder = -1; // what blocked the last blocked sample
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
