@@ -1,6 +1,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bvh.h"
 #include "big_alloc.h"
+#include "env.h"
 #include "tp2_shared.h"
 
 #include <float.h>
@@ -507,10 +508,7 @@ static size_t build_halves(struct prim *prims, struct task kids[2],
  * that tests can compare both builds). */
 static bool two_threads(void)
 {
-    const char *env = getenv("TP2_BVH_THREADS");
-    if (env && strcmp(env, "1") == 0)
-        return false;
-    return sysconf(_SC_NPROCESSORS_ONLN) > 1;
+    return !env_is("TP2_BVH_THREADS", "1") && sysconf(_SC_NPROCESSORS_ONLN) > 1;
 }
 
 static void box_of_array(const void *source, size_t i, double box[6])

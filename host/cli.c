@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include "env.h"
 #include "lexer.h"
 #include "scene.h"
 #include "usage.h"
@@ -120,8 +121,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
     memset(c, 0, sizeof *c);
     c->device_index = -1;
     c->bailout = -1; /* not given: set below from the precision */
-    const char *env = getenv("TP2_VALIDATE");
-    c->validate = env && strcmp(env, "1") == 0;
+    c->validate = env_is("TP2_VALIDATE", "1");
     const char *positional[4];
     int npos = 0;
     bool options_done = false;

@@ -9,6 +9,7 @@
 
 #include "big_alloc.h"
 #include "clock.h"
+#include "env.h"
 #include "finish_spv.h"
 #include "gpu_layout.h"
 #include "pipeline_cache.h"
@@ -259,8 +260,7 @@ static void warn_loop_limit(const struct vkc *vk, const uint32_t *words)
  * show it. */
 static bool occluder_hint(void)
 {
-    const char *env = getenv("TP2_OCCLUDER_HINT");
-    return !(env && strcmp(env, "0") == 0);
+    return !env_is("TP2_OCCLUDER_HINT", "0");
 }
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
@@ -315,8 +315,7 @@ static enum kind_tier kind_tier(const struct scene_features *f)
  * fuses multiply-adds (spirv_fused.h; for tests). */
 static bool fused_requested(void)
 {
-    const char *env = getenv("TP2_FUSED");
-    return env && strcmp(env, "1") == 0;
+    return env_is("TP2_FUSED", "1");
 }
 
 /* The SPIR-V builds (CMakeLists.txt), by precision (double: 1) and tier. */

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "env.h"
 #include "lexer.h"
 #include "vk_check.h"
 
@@ -383,9 +384,8 @@ static bool device_has_extension(VkPhysicalDevice physical, const char *name)
  * scene is copied. TP2_HOST_IMPORT=0 turns this off (the tests compare). */
 static bool wants_host_import(const struct vkc *c)
 {
-    const char *env = getenv("TP2_HOST_IMPORT");
     return c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-           !(env && strcmp(env, "0") == 0) &&
+           !env_is("TP2_HOST_IMPORT", "0") &&
            device_has_extension(c->physical, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
 }
 
@@ -395,8 +395,7 @@ static int create_device(struct vkc *c, const struct vkc_options *opt)
     vkGetPhysicalDeviceFeatures(c->physical, &have);
     /* TP2_FLOAT64=0 hides the feature, so that tests reach what a device
      * without it does (lavapipe has it). */
-    const char *env = getenv("TP2_FLOAT64");
-    if (env && strcmp(env, "0") == 0)
+    if (env_is("TP2_FLOAT64", "0"))
         have.shaderFloat64 = VK_FALSE;
     if (opt->need_float64 && !have.shaderFloat64) {
         fprintf(stderr, "tp2: device '%s' has no shaderFloat64, so it "

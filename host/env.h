@@ -1,0 +1,17 @@
+/* env.h: reading the TP2_* environment variables with which tests switch
+ * tp2 onto one path or another (README.TXT names each where it is used). */
+#ifndef TP2_ENV_H
+#define TP2_ENV_H
+
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Whether environment variable name is set to exactly value. */
+static inline bool env_is(const char *name, const char *value)
+{
+    const char *env = getenv(name);
+    return env && strcmp(env, value) == 0;
+}
+
+#endif
