@@ -87,6 +87,15 @@ struct tracer {
     int pass_rays; /* rays a walk traces per pass */
 };
 
+/* A pipeline made on a thread of its own (side_job), waited for where it
+ * is first needed (join_side). */
+struct side_make {
+    pthread_t thread;
+    bool running;
+    int rc;
+    struct renderer *r;
+};
+
 struct renderer {
     struct vkc vk;
     struct vk_buffer buffers[TP2_BINDING_COUNT];
@@ -105,7 +114,7 @@ struct renderer {
     bool bytes;       /* the file takes 8-bit values (render_options.bytes) */
     VkShaderModule finish_shader; /* finish.comp: the band as the file needs it */
     VkPipeline finish;
-    int side_rc;      /* side_job's */
+    struct side_make finishing, retrace_making; /* pipelines made beside (side_job) */
     bool eager_retrace; /* make the retrace pipeline beside the band's */
     unsigned char *host_band; /* the last finished band, copied out for the writer */
     uint32_t *last_signatures; /* the previous band's last row's (retracing) */
@@ -495,18 +504,45 @@ static int create_finish(struct renderer *r)
     return 0;
 }
 
-/* What is compiled on a thread of its own, beside the band pass's much
- * longer compile: the finish pipeline (on lavapipe it would add 8-10 ms
- * to every start), and under auto, for images of TP2_EAGER_RETRACE
- * samples or more, the retrace pass's, which is otherwise made in the
- * middle of the first band that needs it. */
-static void *side_job(void *arg)
+/* What is compiled on threads of its own, beside the band pass's much
+ * longer compile and its first band's float pass: the finish pipeline (on
+ * lavapipe it would add 8-10 ms to every start), and under auto, for
+ * images of TP2_EAGER_RETRACE samples or more, the retrace pass's, which
+ * is otherwise made in the middle of the first band that needs it. Each
+ * is waited for where it is first needed. */
+static void *finish_job(void *arg)
 {
-    struct renderer *r = arg;
-    r->side_rc = create_finish(r);
-    if (r->side_rc == 0 && r->eager_retrace)
-        r->side_rc = make_pipeline(r, &r->retrace, TP2_WALK_WHOLE);
+    struct side_make *m = arg;
+    m->rc = create_finish(m->r);
     return NULL;
+}
+
+static void *retrace_job(void *arg)
+{
+    struct side_make *m = arg;
+    m->rc = make_pipeline(m->r, &m->r->retrace, TP2_WALK_WHOLE);
+    return NULL;
+}
+
+static void side_job(struct renderer *r, struct side_make *m, void *(*job)(void *))
+{
+    m->r = r;
+    m->running = pthread_create(&m->thread, NULL, job, m) == 0;
+    if (!m->running)
+        job(m);
+}
+
+/* Waits for m's job if it still runs; a wait counts as pipeline time.
+ * Returns the job's status (0 for one never started). */
+static int join_side(struct renderer *r, struct side_make *m)
+{
+    if (m->running) {
+        double t0 = clock_seconds();
+        pthread_join(m->thread, NULL);
+        m->running = false;
+        r->pipeline_time += clock_seconds() - t0;
+    }
+    return m->rc;
 }
 
 /* Pass t's descriptor set: every binding the band pass's buffer, but where
@@ -808,6 +844,8 @@ static int retrace_band(struct renderer *r, int width, int height, int y, int ro
                                  r->buffers[TP2_BINDING_PIXEL_LIST].mapped);
     memcpy(r->last_signatures, sig + (size_t)(rows - 1) * width, (size_t)width * sizeof *sig);
     st->retraced += listed;
+    if (listed > 0 && join_side(r, &r->retrace_making) != 0)
+        return -1;
     for (int s = 0; s < samples && listed > 0; s++) {
         struct pass_area a = {width, y, rows, s, (uint32_t)listed};
         if (render_band_sample(r, &r->retrace, &a, NULL, &st->passes) != 0)
@@ -876,7 +914,7 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
             rc = retrace_band(r, width, height, y, n, samples, st);
         if (rc == 0) { /* the device may reuse its buffers once this is copied */
             double t1 = clock_seconds();
-            rc = finish_band(r, n * width);
+            rc = join_side(r, &r->finishing) != 0 ? -1 : finish_band(r, n * width);
             if (rc == 0)
                 memcpy(r->host_band, r->buffers[TP2_BINDING_OUTPUT].mapped,
                        (size_t)n * width * output_bytes(r));
@@ -894,6 +932,8 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
 static void renderer_destroy(struct renderer *r)
 {
     VkDevice d = r->vk.device;
+    join_side(r, &r->finishing);
+    join_side(r, &r->retrace_making);
     if (d) {
         vkDeviceWaitIdle(d);
         vkDestroyFence(d, r->fence, NULL);
@@ -1128,14 +1168,10 @@ int render_scene(const struct scene *s, const struct render_options *opt,
      * for a large image its first one is made now (side_job). */
     if (create_layouts(&r) != 0)
         goto done;
-    pthread_t side;
-    bool beside = pthread_create(&side, NULL, side_job, &r) == 0;
-    if (!beside)
-        side_job(&r);
-    int band_rc = need_pipeline(&r, &r.band, TP2_WALK_WHOLE);
-    if (beside)
-        pthread_join(side, NULL);
-    if (band_rc != 0 || r.side_rc != 0 || create_descriptors(&r) != 0 ||
+    side_job(&r, &r.finishing, finish_job);
+    if (r.eager_retrace)
+        side_job(&r, &r.retrace_making, retrace_job);
+    if (need_pipeline(&r, &r.band, TP2_WALK_WHOLE) != 0 || create_descriptors(&r) != 0 ||
         create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();

@@ -428,19 +428,26 @@ def case_scene_read_in_place(c):
 
 def case_retrace_pipeline_eager(c):
     """Auto's retrace pipeline made at the start, beside the band pass's
-    (on a second thread: the validation layer watches both), gives the
-    image of the one made when a band first marks a pixel."""
+    and the first bands' float passes (on a second thread: the validation
+    layer watches both; waited for at the first band that marks a pixel),
+    gives the image of the one made when a band first marks a pixel, in
+    one band or in five."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
     images = []
-    for when in ("0", "1e30"):
+    for when, band_bytes in (("0", None), ("1e30", None), ("0", str(48 * 8 * 16))):
         out = os.path.join(c.tmp, f"o{len(images)}.ppm")
-        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"],
-                             {"TP2_EAGER_RETRACE": when})
+        env = {"TP2_EAGER_RETRACE": when}
+        if band_bytes:
+            env["TP2_BAND_BYTES"] = band_bytes
+        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"], env)
         c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
         retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
         c.require(retraced and int(retraced.group(1)) > 0, f"no pixel traced again: {err!r}")
         images.append(read_ppm(out)[2])
-    c.expect(images[0] == images[1], "the eagerly made retrace pipeline changed the image")
+        if band_bytes:
+            c.require("5 bands of 8 rows" in err, f"not in 5 bands: {err!r}")
+    c.expect(images[0] == images[1] == images[2],
+             "the eagerly made retrace pipeline changed the image")
 
 
 def case_bvh_matches_loop(c):
