@@ -912,9 +912,11 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
         }
         if (rc == 0 && retracing(r))
             rc = retrace_band(r, width, height, y, n, samples, st);
+        if (rc == 0 && join_side(r, &r->finishing) != 0)
+            rc = -1;
         if (rc == 0) { /* the device may reuse its buffers once this is copied */
             double t1 = clock_seconds();
-            rc = join_side(r, &r->finishing) != 0 ? -1 : finish_band(r, n * width);
+            rc = finish_band(r, n * width);
             if (rc == 0)
                 memcpy(r->host_band, r->buffers[TP2_BINDING_OUTPUT].mapped,
                        (size_t)n * width * output_bytes(r));
