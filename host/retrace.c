@@ -43,22 +43,30 @@ static bool uniform(const uint32_t *up, const uint32_t *here, const uint32_t *do
            down[x] == sig && down[x + 1] == sig;
 }
 
+/* Whether pixel x of row y (here) is to be traced again. */
+static bool marked(const uint32_t *up, const uint32_t *here, const uint32_t *down, int width,
+                   int x)
+{
+    uint32_t sig = here[x];
+    if (x > 0 && x + 1 < width && up && down && uniform(up, here, down, x, sig))
+        return false; /* most pixels: the quick answer */
+    return (sig & RETRACE_UNSURE) || near_boundary(up, width, x, sig) ||
+           near_boundary(here, width, x, sig) || near_boundary(down, width, x, sig);
+}
+
 size_t retrace_mark(const uint32_t *above, const uint32_t *rows, const uint32_t *below,
                     int width, int n, uint32_t *list)
 {
     size_t count = 0;
-    for (int y = 0; y < n; y++) {
-        const uint32_t *up = row_at(above, rows, below, width, n, y - 1);
-        const uint32_t *here = rows + (size_t)y * width;
-        const uint32_t *down = row_at(above, rows, below, width, n, y + 1);
-        for (int x = 0; x < width; x++) {
-            uint32_t sig = here[x];
-            if (x > 0 && x + 1 < width && up && down && uniform(up, here, down, x, sig))
-                continue; /* most pixels: the quick answer */
-            if ((sig & RETRACE_UNSURE) || near_boundary(up, width, x, sig) ||
-                near_boundary(here, width, x, sig) || near_boundary(down, width, x, sig))
-                list[count++] = (uint32_t)((size_t)y * width + x);
-        }
-    }
+    for (int y0 = 0; y0 < n; y0 += RETRACE_BLOCK_Y)
+        for (int x0 = 0; x0 < width; x0 += RETRACE_BLOCK_X)
+            for (int y = y0; y < y0 + RETRACE_BLOCK_Y && y < n; y++) {
+                const uint32_t *up = row_at(above, rows, below, width, n, y - 1);
+                const uint32_t *here = rows + (size_t)y * width;
+                const uint32_t *down = row_at(above, rows, below, width, n, y + 1);
+                for (int x = x0; x < x0 + RETRACE_BLOCK_X && x < width; x++)
+                    if (marked(up, here, down, width, x))
+                        list[count++] = (uint32_t)((size_t)y * width + x);
+            }
     return count;
 }

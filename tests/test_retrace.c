@@ -10,6 +10,16 @@
 
 enum { W = 5, N = 4 };
 
+/* Where pixel `at` of the band comes in the list's order: by blocks of
+ * RETRACE_BLOCK_X x RETRACE_BLOCK_Y, row order within each. */
+static long block_order(uint32_t at)
+{
+    long x = at % W, y = at / W;
+    long block = y / RETRACE_BLOCK_Y * W + x / RETRACE_BLOCK_X;
+    return block * RETRACE_BLOCK_X * RETRACE_BLOCK_Y + y % RETRACE_BLOCK_Y * RETRACE_BLOCK_X +
+           x % RETRACE_BLOCK_X;
+}
+
 #define S RETRACE_SENSITIVE
 #define U RETRACE_UNSURE
 
@@ -23,8 +33,9 @@ static size_t mark(const uint32_t *above, const uint32_t band[N][W], const uint3
     memset(out, 0, sizeof(int) * W * N);
     for (size_t i = 0; i < n; i++) {
         out[list[i] / W][list[i] % W] = 1;
-        expect(i == 0 || list[i] > list[i - 1], "list in row order: %u after %u",
-               (unsigned)list[i], (unsigned)list[i > 0 ? i - 1 : 0]);
+        expect(i == 0 || block_order(list[i]) > block_order(list[i - 1]),
+               "list in block order: %u after %u", (unsigned)list[i],
+               (unsigned)list[i > 0 ? i - 1 : 0]);
     }
     return n;
 }
