@@ -5,6 +5,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "tp2_shared.h"
+
 /* The float pass gives each pixel a signature (shaders/signature.glsl):
  * a hash of its decisions, and two bits. */
 #define RETRACE_UNSURE 0x80000000u    /* a decision was within float's error */
@@ -35,8 +37,8 @@
  * order within a block, blocks in row order): the retrace pass gives 8
  * consecutive entries to the 8 lanes of a SIMD batch on lavapipe, and
  * nearby pixels' rays diverge less (README "Performance"). */
-#define RETRACE_BLOCK_X 4
-#define RETRACE_BLOCK_Y 2
+#define RETRACE_BLOCK_X TP2_LANE_BLOCK_X
+#define RETRACE_BLOCK_Y TP2_LANE_BLOCK_Y
 
 size_t retrace_mark(const uint32_t *above, const uint32_t *rows, const uint32_t *below,
                     int width, int n, uint32_t *list);

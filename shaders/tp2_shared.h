@@ -157,4 +157,11 @@
 #define TP2_GROUP_X 8
 #define TP2_GROUP_Y 8
 
+/* The pixels 8 lanes of one lavapipe SIMD batch trace together, in the
+ * band pass (trace.comp, pixel_in_group) and in the retrace pass's list
+ * (host/retrace.c): a 4 x 2 block, whose rays diverge less than a row of
+ * 8 pixels' (README "Performance"). */
+#define TP2_LANE_BLOCK_X 4
+#define TP2_LANE_BLOCK_Y 2
+
 #endif

@@ -259,18 +259,20 @@ int flat_invocation()
     return int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
 }
 
-// This invocation's pixel in its workgroup's 8 x 8. Lavapipe runs 8
-// consecutive invocations as the lanes of one SIMD batch, which waits for
-// its slowest lane: a 4 x 2 block of pixels keeps their reflected and
-// shadow rays closer together than a row of 8 (README "Performance"). A
-// permutation: each pixel is still traced once, and the same way.
-#if TP2_GROUP_X != 8 || TP2_GROUP_Y != 8
-#error "pixel_in_group() assumes 8 x 8 workgroups"
+// This invocation's pixel in its workgroup. Lavapipe runs 8 consecutive
+// invocations as the lanes of one SIMD batch, which waits for its slowest
+// lane: each batch takes a TP2_LANE_BLOCK_X x _Y block of pixels
+// (tp2_shared.h). A permutation: each pixel is still traced once, and the
+// same way.
+#if TP2_LANE_BLOCK_X * TP2_LANE_BLOCK_Y != 8 || TP2_GROUP_X % TP2_LANE_BLOCK_X != 0
+#error "a lane block is 8 pixels, and a workgroup's rows are whole blocks"
 #endif
 ivec2 pixel_in_group()
 {
+    const uint across = TP2_GROUP_X / TP2_LANE_BLOCK_X; // blocks in a row of blocks
     uint batch = gl_LocalInvocationIndex / 8u, lane = gl_LocalInvocationIndex % 8u;
-    return ivec2(batch % 2u * 4u + lane % 4u, batch / 2u * 2u + lane / 4u);
+    return ivec2(batch % across * TP2_LANE_BLOCK_X + lane % TP2_LANE_BLOCK_X,
+                 batch / across * TP2_LANE_BLOCK_Y + lane / TP2_LANE_BLOCK_X);
 }
 
 // Whether lavapipe cut this invocation short (see TP2_CANARY_STEPS).
