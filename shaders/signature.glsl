@@ -5,8 +5,8 @@
 // which object a ray hits (and which face), whether a light is shadowed,
 // which checker cell a point lies in, whether a ray enters or leaves,
 // whether it is totally reflected. The float pass keeps a word per pixel
-// (render.c reads it, retrace.c marks from it): a 30-bit hash of its
-// decisions, and two bits. UNSURE: a decision with a local margin (a
+// (render.c reads it, retrace.c marks from it): a 29-bit hash of its
+// decisions, and three bits. UNSURE: a decision with a local margin (a
 // checker cell face, the sign of n.d, total internal reflection) was
 // within its doubt of flipping. SENSITIVE: a boundary seen there may move
 // by frame.limits.y pixels or more. A pixel is traced again in double
@@ -15,23 +15,27 @@
 // no local margin (a ray that misses an object cannot tell by how much),
 // so their boundaries are found between neighbours; where a boundary
 // cannot move by a tenth of a pixel, a flip would need it to pass that
-// near a pixel's center.
+// near a pixel's center. STOPPED: an UNSURE pixel is traced again, every
+// sample, whatever else its rays do, so its float walk stops at that
+// decision; its hash then covers the rays before it only, and the host
+// takes it to differ from every neighbour's.
 //
 // The doubt is a bound on float's error, carried along each ray and
 // measured in pixels against the footprint of its pixel (below). It is a
 // first-order estimate with a safety factor, not a proof: README.TXT
 // "Accuracy" has what it was checked against.
 
-const uint UNSURE = 0x80000000u;    // a decision within float's error of flipping
-const uint SENSITIVE = 0x40000000u; // boundaries here move by frame.limits.y pixels or more
-const uint HASH = 0x3fffffffu;
+const uint UNSURE = TP2_SIG_UNSURE;       // a decision within float's error of flipping
+const uint SENSITIVE = TP2_SIG_SENSITIVE; // boundaries here move by frame.limits.y pixels or more
+const uint STOPPED = TP2_SIG_STOPPED;     // the walk stopped at its first UNSURE decision
+const uint HASH = TP2_SIG_HASH;
 const uint SIGNATURE_START = 2166136261u & HASH; // FNV-1a's offset basis
 
 // Float's unit roundoff, 2^-24, times a safety factor for the operations
 // one step of a ray takes (an intersection, a normal, a reflection).
 const float ROUNDING = 4.0 * 5.9604645e-8;
 
-// Mixes one decision into the hash (FNV-1a on a whole word, 30 bits);
+// Mixes one decision into the hash (FNV-1a on a whole word, 29 bits);
 // compiled out when the pass records no signatures.
 void decided(inout uint sig, uint choice)
 {
@@ -124,6 +128,13 @@ uvec2 packed_doubt(vec4 d)
 vec4 unpacked_doubt(uvec2 h)
 {
     return vec4(unpackHalf2x16(h.x), unpackHalf2x16(h.y));
+}
+
+// Whether the float pass is done with a pixel of signature sig: it is
+// traced again in double (compiled out when there are no signatures).
+bool unsure(uint sig)
+{
+    return SIGNATURES && (sig & UNSURE) != 0u;
 }
 
 // Whether a decision that a flip of changes the pixel by up to `stake`

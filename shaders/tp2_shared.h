@@ -67,6 +67,17 @@
 #define TP2_SPEC_OCCLUDER_HINT 16 /* bool: an arealight sample's shadow ray tests the last one's occluder first */
 #define TP2_SPEC_COUNT 17
 
+/* A pixel's signature word (shaders/signature.glsl, host/retrace.c): a
+ * hash of the float pass's decisions and three bits. UNSURE: a decision
+ * was within float's error of flipping; SENSITIVE: boundaries seen there
+ * may move by a pixel's fraction that matters; STOPPED: the walk stopped
+ * at its first UNSURE decision, so the hash and SENSITIVE cover only the
+ * rays before it. */
+#define TP2_SIG_UNSURE 0x80000000u
+#define TP2_SIG_SENSITIVE 0x40000000u
+#define TP2_SIG_STOPPED 0x20000000u
+#define TP2_SIG_HASH 0x1fffffffu
+
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0
 #define TP2_STAT_SHADOW 1

@@ -357,14 +357,16 @@ void main()
         vec4 doubt = vec4(0.0, ROUNDING, 0.0, frame.limits.z);
         w = Walk_(Ray(origin, dir, NOWHERE, 1.0, 0), 0, 0, true, vec3(0.0), frame.limits.x,
                   sig, doubt);
-        ray_tally[TP2_STAT_CAMERA] = 1u;
+        ray_tally[TP2_STAT_CAMERA] = unsure(sig) ? 0u : 1u;
     }
 
     // The walk: all of it, or at most pass_rays rays (a full tree has
-    // MAX_RAYS).
+    // MAX_RAYS), or until a decision is UNSURE: then the pixel is traced
+    // again in double, every sample, and what float would trace after is
+    // not needed (signature.glsl, STOPPED).
     vec2 area_shift = random2(pixel, uint(2 * s + 2));
     int end = WALK == TP2_WALK_WHOLE ? MAX_RAYS : min(w.traced + pass_rays, MAX_RAYS);
-    for (; w.traced < end && w.live; ++w.traced) {
+    for (; w.traced < end && w.live && !unsure(w.sig); ++w.traced) {
         Ray first, second;
         vec4 first_doubt, second_doubt;
         int children = trace_step(w.ray, w.doubt, area_shift, w.color, w.budget, w.sig, first,
@@ -387,6 +389,10 @@ void main()
         }
     }
     w.live = w.live && w.traced < MAX_RAYS;
+    if (unsure(w.sig)) {
+        w.live = false;
+        w.sig |= STOPPED;
+    }
 
     bool cut = LOOP_GUARD && was_cut();
     if (cut) {

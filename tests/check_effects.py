@@ -760,7 +760,9 @@ def case_stats(c):
     """--stats names every phase and counts W x H x spp camera rays under
     --precision float; under auto also the row after each band but the
     last (traced for its signatures) and the pixels traced again, which it
-    reports."""
+    reports, less the samples the float pass skips: after a pixel's first
+    sample, one with an UNSURE decision is left to the double pass
+    (signature.glsl, STOPPED)."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
     for precision in ("float", "auto"):
         status, _, err = run(c.tp2, ["--stats", "--spp", "3", "--precision", precision, scene,
@@ -781,8 +783,13 @@ def case_stats(c):
         c.expect((retraced is not None) == (precision == "auto"), f"retrace line: {err!r}")
         again = int(retraced.group(1)) if retraced else 0
         after = 2 * 10 if precision == "auto" else 0
-        c.expect(counts.get("camera") == (10 * 20 + after + again) * 3,
-                 f"{precision}: camera rays {counts.get('camera')}, {again} traced again")
+        most = (10 * 20 + after + again) * 3
+        if precision == "float":
+            c.expect(counts.get("camera") == most, f"float: camera rays {counts.get('camera')}")
+        else:  # this scene has UNSURE pixels: some samples are skipped
+            least = (10 * 20 + after) + again * 3
+            c.expect(least <= counts.get("camera", 0) < most,
+                     f"auto: camera rays {counts.get('camera')}, {again} traced again")
         c.expect(counts.get("shadow", 0) > 0 and counts.get("reflected", 0) > 0, f"{counts}")
         c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"),
                  f"{counts}")

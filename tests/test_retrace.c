@@ -1,7 +1,8 @@
 /* test_retrace.c: which pixels --precision auto traces again
  * (retrace_mark): UNSURE pixels; both sides of a boundary between hashes
  * when either side is SENSITIVE, across the band's edges too; nothing
- * where hashes differ but neither side is sensitive. */
+ * where hashes differ but neither side is sensitive; a STOPPED pixel's
+ * hash taken to differ from every neighbour's. */
 #include <stdint.h>
 #include <string.h>
 
@@ -22,6 +23,7 @@ static long block_order(uint32_t at)
 
 #define S RETRACE_SENSITIVE
 #define U RETRACE_UNSURE
+#define STOP (RETRACE_UNSURE | RETRACE_STOPPED)
 
 /* Marks band (N rows of W) with optional rows around it; the marks as a
  * W x N grid of 0/1 in out. Returns the count. */
@@ -99,5 +101,15 @@ int main(void)
     const int bits_want[N][W] = {{1, 0, 0, 0, 0}};
     mark(NULL, bits, NULL, got);
     expect_grid("flag bits", got, bits_want);
+
+    /* A stopped pixel's hash covers part of its rays: even where it equals
+     * a neighbour's, it counts as a boundary with each neighbour, marked
+     * where one of the two is sensitive (the stopped one itself always). */
+    const uint32_t stopped[N][W] = {{8, 8, 8, 8, 8 | S}, {8, 8 | STOP, 8 | S, 8, 8},
+                                    {8, 8, 8, 8, 8}, {8, 8, 8, 8 | STOP | S, 8}};
+    const int stopped_want[N][W] = {{0, 0, 0, 0, 0}, {0, 1, 1, 0, 0},
+                                    {0, 0, 1, 1, 1}, {0, 0, 1, 1, 1}};
+    mark(NULL, stopped, NULL, got);
+    expect_grid("stopped", got, stopped_want);
     return unit_report();
 }
