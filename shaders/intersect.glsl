@@ -25,28 +25,48 @@ const Start NOWHERE = Start(-1, false);
 
 #include "shapes.glsl"
 
+// A ray tests BVH boxes in float in both builds (the boxes are floats,
+// and float's box tests are the cheaper on lavapipe's SIMD: README
+// "Performance"). BoxRay is the ray as they see it.
+// Each slab's t carries two roundings of relative size 2^-24, so the exit
+// is widened by 2^-21 of itself: a ray grazing a box's face far from the
+// camera must not miss it (Ize, "Robust BVH Ray Traversal"). The double
+// build's ray, rounded to float, may also have moved: its origin by 2^-24
+// of itself, which moves each slab by that times 1/d (slack, doubled for
+// safety), and 1/d by 2^-24 of itself (entry narrowed by 2^-21 too); so
+// no box the double ray meets is missed. The float build's slack is 0
+// and its entry is not narrowed: its tests are as they were.
+struct BoxRay {
+    vec3 o, inv_d, slack;
+    float narrow;
+};
+
+BoxRay box_ray(rvec3 o, rvec3 inv_d)
+{
+    vec3 of = vec3(o), inv = vec3(inv_d);
 #ifdef TP2_DOUBLE
-const real BOX_SLACK = 1.0 + 4.5e-15LF; // 2^-47
+    return BoxRay(of, inv, min(abs(of) * 1.1920928955078125e-7 * abs(inv), vec3(1e37)),
+                  1.0 - 4.76837158203125e-7);
 #else
-const real BOX_SLACK = 1.0 + 4.76837158203125e-7; // 2^-21
+    return BoxRay(of, inv, vec3(0.0), 1.0);
 #endif
+}
 
 // Where the ray enters each of a node's two children's boxes (x, y),
-// if before tmax; else NO_HIT. Each slab's t carries two roundings of
-// relative size 2^-24 (float), so the exit is widened by 2^-21 of itself:
-// a ray grazing a box's face far from the camera must not miss it (Ize,
-// "Robust BVH Ray Traversal"). Both boxes at once: one vec4 per axis
+// if before tmax; else NO_HIT. Both boxes at once: one vec4 per axis
 // holds (left lo, left hi, right lo, right hi).
-rvec2 children_entry(BvhNode n, rvec3 o, rvec3 inv_d, real tmax)
+rvec2 children_entry(BvhNode n, BoxRay r, float tmax)
 {
-    rvec4 tx = (rvec4(n.x) - o.x) * inv_d.x;
-    rvec4 ty = (rvec4(n.y) - o.y) * inv_d.y;
-    rvec4 tz = (rvec4(n.z) - o.z) * inv_d.z;
-    rvec2 enter = max(max(min(tx.xz, tx.yw), min(ty.xz, ty.yw)),
-                      max(min(tz.xz, tz.yw), rvec2(0.0)));
-    rvec2 leave = min(min(max(tx.xz, tx.yw), max(ty.xz, ty.yw)), max(tz.xz, tz.yw)) *
-                  BOX_SLACK;
-    return mix(rvec2(NO_HIT), enter, lessThanEqual(enter, min(leave, rvec2(tmax))));
+    vec4 tx = (n.x - r.o.x) * r.inv_d.x;
+    vec4 ty = (n.y - r.o.y) * r.inv_d.y;
+    vec4 tz = (n.z - r.o.z) * r.inv_d.z;
+    vec2 enter = max(max(min(tx.xz, tx.yw) - r.slack.x, min(ty.xz, ty.yw) - r.slack.y),
+                     max(min(tz.xz, tz.yw) - r.slack.z, vec2(0.0))) *
+                 r.narrow;
+    vec2 leave = min(min(max(tx.xz, tx.yw) + r.slack.x, max(ty.xz, ty.yw) + r.slack.y),
+                     max(tz.xz, tz.yw) + r.slack.z) *
+                 (1.0 + 4.76837158203125e-7);
+    return mix(rvec2(NO_HIT), rvec2(enter), lessThanEqual(enter, min(leave, vec2(tmax))));
 }
 
 // 1 / d with zero components replaced by a tiny positive number, so the
@@ -78,7 +98,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
     Hit h = Hit(tmax, -1, 0, tmax, -1);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
-    rvec3 inv_d = USE_BVH ? safe_inverse(d) : d;
+    BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);
     int stack_node[TP2_BVH_STACK];
     real stack_t[TP2_BVH_STACK];
     int sp = 0;
@@ -112,7 +132,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
             for (int level = 0; level < TP2_BVH_STACK && node >= 0; ++level) {
                 BvhNode n = load_node(node);
                 node = -1;
-                rvec2 t = children_entry(n, o, inv_d, h.t);
+                rvec2 t = children_entry(n, box, float(h.t));
                 bool left_first = t.x <= t.y;
                 if (max(t.x, t.y) < NO_HIT && sp < TP2_BVH_STACK) {
                     stack_node[sp] = left_first ? n.link.y : n.link.x;
