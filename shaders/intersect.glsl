@@ -36,6 +36,9 @@ const Start NOWHERE = Start(-1, false);
 // safety), and 1/d by 2^-24 of itself (entry narrowed by 2^-21 too); so
 // no box the double ray meets is missed. The float build's slack is 0
 // and its entry is not narrowed: its tests are as they were.
+const float BOX_WIDEN = 4.76837158203125e-7; // 2^-21: a slab's two roundings, with room
+const float ORIGIN_ROUNDING = 1.1920928955078125e-7; // 2^-23: twice float's 2^-24
+
 struct BoxRay {
     vec3 o, inv_d, slack;
     float narrow;
@@ -45,8 +48,8 @@ BoxRay box_ray(rvec3 o, rvec3 inv_d)
 {
     vec3 of = vec3(o), inv = vec3(inv_d);
 #ifdef TP2_DOUBLE
-    return BoxRay(of, inv, min(abs(of) * 1.1920928955078125e-7 * abs(inv), vec3(1e37)),
-                  1.0 - 4.76837158203125e-7);
+    return BoxRay(of, inv, min(abs(of) * ORIGIN_ROUNDING * abs(inv), vec3(1e37)),
+                  1.0 - BOX_WIDEN);
 #else
     return BoxRay(of, inv, vec3(0.0), 1.0);
 #endif
@@ -65,7 +68,7 @@ rvec2 children_entry(BvhNode n, BoxRay r, float tmax)
                  r.narrow;
     vec2 leave = min(min(max(tx.xz, tx.yw) + r.slack.x, max(ty.xz, ty.yw) + r.slack.y),
                      max(tz.xz, tz.yw) + r.slack.z) *
-                 (1.0 + 4.76837158203125e-7);
+                 (1.0 + BOX_WIDEN);
     return mix(rvec2(NO_HIT), rvec2(enter), lessThanEqual(enter, min(leave, vec2(tmax))));
 }
 
