@@ -51,7 +51,11 @@ struct BvhNode {
     ivec2 link;
 };
 
-layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame; };
+layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame_buffer; };
+// The frame, copied once per invocation (main): on lavapipe every
+// storage-buffer load is a loop over the SIMD lanes, even of a field
+// all lanes share; a private copy is registers.
+Frame frame;
 layout(std430, set = 0, binding = TP2_BINDING_LIGHTS) readonly buffer LightBuf { Light lights[]; };
 layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentBuf { Pigment pigments[]; };
 layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };

@@ -301,6 +301,7 @@ void count_rays()
 // pass. An invocation that lavapipe cut short writes nothing.
 void main()
 {
+    frame = frame_buffer;
     int width = frame.counts.x;
     int height = frame.counts.y;
     for (int i = 0; i < TP2_STAT_COUNT; ++i)
