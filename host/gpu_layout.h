@@ -130,6 +130,30 @@ TP2_SIZE(gpu_object_d, 128);
 TP2_TEXEL_LAYOUT(gpu_object_f, TP2_ROW_TEXELS_F, TP2_OBJECT_TEXELS_F);
 TP2_TEXEL_LAYOUT(gpu_object_d, TP2_ROW_TEXELS_D, TP2_OBJECT_TEXELS_D);
 
+/* Lights, pigments and finishes too (tp2_shared.h; layout.glsl's
+ * load_light, pigment_* and load_finish read them so). */
+#define TP2_LIGHT_TEXEL_LAYOUT(T, rows, texels)                                   \
+    _Static_assert(offsetof(struct T, color) == TP2_TEXEL_BYTES * (rows) &&       \
+                       offsetof(struct T, att) == TP2_TEXEL_BYTES * ((rows) + 1) && \
+                       sizeof(struct T) == TP2_TEXEL_BYTES * (texels),            \
+                   #T " as the shader's texels")
+#define TP2_PIGMENT_TEXEL_LAYOUT(T, rows, texels)                                  \
+    _Static_assert(offsetof(struct T, color2) == TP2_TEXEL_BYTES &&                \
+                       offsetof(struct T, p) == TP2_TEXEL_BYTES * 2 &&             \
+                       offsetof(struct T, q) == TP2_TEXEL_BYTES * (2 + (rows)) &&  \
+                       offsetof(struct T, kind) == TP2_TEXEL_BYTES * (2 + 2 * (rows)) && \
+                       sizeof(struct T) == TP2_TEXEL_BYTES * (texels),             \
+                   #T " as the shader's texels")
+TP2_LIGHT_TEXEL_LAYOUT(gpu_light_f, TP2_ROW_TEXELS_F, TP2_LIGHT_TEXELS_F);
+TP2_LIGHT_TEXEL_LAYOUT(gpu_light_d, TP2_ROW_TEXELS_D, TP2_LIGHT_TEXELS_D);
+TP2_PIGMENT_TEXEL_LAYOUT(gpu_pigment_f, TP2_ROW_TEXELS_F, TP2_PIGMENT_TEXELS_F);
+TP2_PIGMENT_TEXEL_LAYOUT(gpu_pigment_d, TP2_ROW_TEXELS_D, TP2_PIGMENT_TEXELS_D);
+_Static_assert(offsetof(struct gpu_finish_f, optics) == TP2_TEXEL_BYTES &&
+                   sizeof(struct gpu_finish_f) == TP2_TEXEL_BYTES * TP2_FINISH_TEXELS &&
+                   offsetof(struct gpu_finish_d, optics) == TP2_TEXEL_BYTES &&
+                   sizeof(struct gpu_finish_d) == TP2_TEXEL_BYTES * TP2_FINISH_TEXELS,
+               "gpu_finish as the shader's texels");
+
 TP2_LAYOUT(gpu_walk_ray_f, origin, 0);
 TP2_LAYOUT(gpu_walk_ray_f, dir, 16);
 TP2_LAYOUT(gpu_walk_ray_f, info, 32);

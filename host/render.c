@@ -340,11 +340,12 @@ static const struct {
      {tp2_trace_double_curved, sizeof tp2_trace_double_curved}},
 };
 
-/* How the shader reads binding i (tp2_shared.h): objects and BVH nodes
- * as texels, the rest as storage buffers. */
+/* How the shader reads binding i (tp2_shared.h): lights, pigments,
+ * finishes, objects and BVH nodes as texels, the rest as storage buffers. */
 static VkDescriptorType binding_type(uint32_t i)
 {
-    return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH
+    return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH || i == TP2_BINDING_LIGHTS ||
+                   i == TP2_BINDING_PIGMENTS || i == TP2_BINDING_FINISHES
                ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
                : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }

@@ -1,6 +1,9 @@
 // layout.glsl: the GPU structs as the shader sees them (std430).
 // Twin of host/gpu_layout_types.h (and struct bvh_gpu_node in host/bvh.h); keep
-// field names, order and types identical: tests/test_layout.c checks them.
+// field names, order and types identical: tests/test_layout.c checks the
+// storage buffers' against the SPIR-V, and host/gpu_layout.h pins the
+// records read as texels (lights, pigments, finishes, objects, nodes) to
+// the texel counts of tp2_shared.h that the loaders below use.
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
 struct Frame {
@@ -27,15 +30,6 @@ struct Light {
     vec4 att;
 };
 
-// What each kind keeps where: host/pigments.c.
-struct Pigment {
-    vec4 color1;
-    vec4 color2;
-    rvec4 p;
-    rvec4 q;
-    ivec4 kind; // TP2_PIGMENT_*; texmap: first texel, width, height
-};
-
 struct Finish {
     vec4 phong;  // ka kd ks n
     vec4 optics; // kr kt ior
@@ -56,10 +50,11 @@ layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { 
 // storage-buffer load is a loop over the SIMD lanes, even of a field
 // all lanes share; a private copy is registers.
 Frame frame;
-layout(std430, set = 0, binding = TP2_BINDING_LIGHTS) readonly buffer LightBuf { Light lights[]; };
-layout(std430, set = 0, binding = TP2_BINDING_PIGMENTS) readonly buffer PigmentBuf { Pigment pigments[]; };
-layout(std430, set = 0, binding = TP2_BINDING_FINISHES) readonly buffer FinishBuf { Finish finishes[]; };
-// Objects and BVH nodes, as texels (tp2_shared.h; read below).
+// Lights, pigments, finishes, objects and BVH nodes, as texels
+// (tp2_shared.h; read below).
+layout(set = 0, binding = TP2_BINDING_LIGHTS) uniform usamplerBuffer light_texels;
+layout(set = 0, binding = TP2_BINDING_PIGMENTS) uniform usamplerBuffer pigment_texels;
+layout(set = 0, binding = TP2_BINDING_FINISHES) uniform usamplerBuffer finish_texels;
 layout(set = 0, binding = TP2_BINDING_OBJECTS) uniform usamplerBuffer object_texels;
 layout(set = 0, binding = TP2_BINDING_BVH) uniform usamplerBuffer node_texels;
 layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { rvec4 extra[]; };
@@ -131,18 +126,78 @@ layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 #define ROW_TEXELS TP2_ROW_TEXELS_F
 #endif
 
-// Row k (0: a, 1: b, 2: c) of object i.
-rvec4 object_row(int i, int k)
-{
-    int at = OBJECT_TEXELS * i + ROW_TEXELS * k;
+// Lights, pigments and finishes (tp2_shared.h; host/gpu_layout.h pins
+// the C structs to these texels). What each pigment kind keeps where:
+// host/pigments.c.
 #ifdef TP2_DOUBLE
-    uvec4 lo = texelFetch(object_texels, at);
-    uvec4 hi = texelFetch(object_texels, at + 1);
+#define LIGHT_TEXELS TP2_LIGHT_TEXELS_D
+#define PIGMENT_TEXELS TP2_PIGMENT_TEXELS_D
+#else
+#define LIGHT_TEXELS TP2_LIGHT_TEXELS_F
+#define PIGMENT_TEXELS TP2_PIGMENT_TEXELS_F
+#endif
+
+vec4 float_texel(usamplerBuffer b, int at)
+{
+    return uintBitsToFloat(texelFetch(b, at));
+}
+
+// A real 4-vector from texel `at` on (ROW_TEXELS of them).
+rvec4 real_texel(usamplerBuffer b, int at)
+{
+#ifdef TP2_DOUBLE
+    uvec4 lo = texelFetch(b, at);
+    uvec4 hi = texelFetch(b, at + 1);
     return dvec4(packDouble2x32(lo.xy), packDouble2x32(lo.zw), packDouble2x32(hi.xy),
                  packDouble2x32(hi.zw));
 #else
-    return uintBitsToFloat(texelFetch(object_texels, at));
+    return float_texel(b, at);
 #endif
+}
+
+Light load_light(int i)
+{
+    int at = LIGHT_TEXELS * i;
+    return Light(real_texel(light_texels, at), float_texel(light_texels, at + ROW_TEXELS),
+                 float_texel(light_texels, at + ROW_TEXELS + 1));
+}
+
+Finish load_finish(int i)
+{
+    int at = TP2_FINISH_TEXELS * i;
+    return Finish(float_texel(finish_texels, at), float_texel(finish_texels, at + 1));
+}
+
+// Pigment i's fields, each loaded where its kind needs it.
+vec4 pigment_color1(int i)
+{
+    return float_texel(pigment_texels, PIGMENT_TEXELS * i);
+}
+
+vec4 pigment_color2(int i)
+{
+    return float_texel(pigment_texels, PIGMENT_TEXELS * i + 1);
+}
+
+rvec4 pigment_p(int i)
+{
+    return real_texel(pigment_texels, PIGMENT_TEXELS * i + 2);
+}
+
+rvec4 pigment_q(int i)
+{
+    return real_texel(pigment_texels, PIGMENT_TEXELS * i + 2 + ROW_TEXELS);
+}
+
+ivec4 pigment_kind(int i) // TP2_PIGMENT_*; texmap: first texel, width, height
+{
+    return ivec4(texelFetch(pigment_texels, PIGMENT_TEXELS * i + 2 + 2 * ROW_TEXELS));
+}
+
+// Row k (0: a, 1: b, 2: c) of object i.
+rvec4 object_row(int i, int k)
+{
+    return real_texel(object_texels, OBJECT_TEXELS * i + ROW_TEXELS * k);
 }
 
 ivec4 object_ids(int i)

@@ -25,9 +25,9 @@ ivec2 wrapped_cells(real s, int size, out float weight)
 // s = p.(s row), t = p.(t row) looked up with bilinear filtering.
 vec3 texmap_color(int index, rvec3 p)
 {
-    rvec4 srow = pigments[index].p;
-    rvec4 trow = pigments[index].q;
-    ivec4 info = pigments[index].kind; // kind, first texel, width, height
+    rvec4 srow = pigment_p(index);
+    rvec4 trow = pigment_q(index);
+    ivec4 info = pigment_kind(index); // kind, first texel, width, height
     float fx, fy;
     ivec2 x = wrapped_cells(dot(srow.xyz, p) + srow.w, info.z, fx);
     ivec2 y = wrapped_cells(dot(trow.xyz, p) + trow.w, info.w, fy);
@@ -55,22 +55,22 @@ bool unsure_cell(rvec3 x, rvec3 cell, real size, rvec3 nf, float doubt)
 // cell is a decision (signature.glsl), the other kinds vary smoothly.
 vec3 pigment_color(int index, rvec3 p, rvec3 nf, float doubt, inout uint sig)
 {
-    int kind = pigments[index].kind.x;
+    int kind = pigment_kind(index).x;
     if (USES_PIGMENT(TP2_PIGMENT_CHECKER) && kind == TP2_PIGMENT_CHECKER) {
-        real size = pigments[index].p.x;
+        real size = pigment_p(index).x;
         rvec3 x = p / size;
         rvec3 cell = floor(x);
         real k = cell.x + cell.y + cell.z;
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
         if (SIGNATURES && doubt > 0.0 && unsure_cell(x, cell, size, nf, doubt))
             sig |= UNSURE;
-        return even ? pigments[index].color1.rgb : pigments[index].color2.rgb;
+        return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }
     if (USES_PIGMENT(TP2_PIGMENT_GRADIENT) && kind == TP2_PIGMENT_GRADIENT) {
-        float f = clamp(float(dot(p - pigments[index].p.xyz, pigments[index].q.xyz)), 0.0, 1.0);
-        return mix(pigments[index].color1.rgb, pigments[index].color2.rgb, f);
+        float f = clamp(float(dot(p - pigment_p(index).xyz, pigment_q(index).xyz)), 0.0, 1.0);
+        return mix(pigment_color1(index).rgb, pigment_color2(index).rgb, f);
     }
     if (USES_PIGMENT(TP2_PIGMENT_TEXMAP) && kind == TP2_PIGMENT_TEXMAP)
         return texmap_color(index, p);
-    return pigments[index].color1.rgb;
+    return pigment_color1(index).rgb;
 }

@@ -57,9 +57,10 @@ void light_sample(int j, vec2 area_shift, out rvec3 pos, out vec3 color, out vec
             light = j - m + 1;
         }
     }
-    pos = lights[light].pos.xyz;
-    color = lights[light].color.rgb;
-    att = lights[light].att;
+    Light l = load_light(light);
+    pos = l.pos.xyz;
+    color = l.color.rgb;
+    att = l.att;
     if (k >= 0) {
         pos += real(frame.area.x) * rvec3(sphere_point(k, m, area_shift));
         color /= float(m);

@@ -45,6 +45,16 @@
 #define TP2_OBJECT_TEXELS_F 4
 #define TP2_OBJECT_TEXELS_D 8
 #define TP2_NODE_TEXELS 4
+/* Lights, pigments and finishes, the loads of every hit, are texels too
+ * (where a storage buffer loads a field all lanes share once per lane): a
+ * light is its position (a row: TP2_ROW_TEXELS_*), color and attenuation;
+ * a pigment its two colors, rows p and q, then its kind; a finish its
+ * phong and optics texels. A double pigment ends in a texel of padding. */
+#define TP2_LIGHT_TEXELS_F 3
+#define TP2_LIGHT_TEXELS_D 4
+#define TP2_PIGMENT_TEXELS_F 5
+#define TP2_PIGMENT_TEXELS_D 8
+#define TP2_FINISH_TEXELS 2
 
 /* Specialization constants: the pipeline is compiled for the features the
  * scene uses, so a scene without them pays nothing for them. */

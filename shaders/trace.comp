@@ -134,7 +134,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     sh.origin = outside;
     sh.start = back;
     ivec4 ids = object_ids(h.object);
-    Finish fin = finishes[ids.z];
+    Finish fin = load_finish(ids.z);
     sh.fin = fin;
     sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
     vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;

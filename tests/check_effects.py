@@ -5,6 +5,7 @@
 SPEC 3-4 worked out here in double precision, never from tp2's output;
 float images are compared within 1e-5 unless a case says otherwise."""
 import glob
+import json
 import math
 import os
 import re
@@ -728,9 +729,14 @@ def case_auto_double_too_large(c):
     """Where the double scene would not fit the device (objects take twice
     the texels in double: TP2_TEXEL_ELEMENTS between the two) auto renders
     float alone, and --stats says so."""
-    objects = sum(1 for line in effects_scene().splitlines()
-                  if re.match(r"\d+ \d+ (sphere|plane) ", line))
-    env = {"TP2_TEXEL_ELEMENTS": str(4 * objects)}  # TP2_OBJECT_TEXELS_F each
+    status, out, err = run(c.tp2, ["--dump-scene", scene_file(c.tmp, "e.txt", effects_scene())])
+    c.require(status == 0, f"--dump-scene: exit {status}: {err}")
+    n = {k: len(json.loads(out)[k]) for k in ("lights", "pigments", "finishes", "objects")}
+    # The float scene's texels (tp2_shared.h: TP2_*_TEXELS_F) all fit;
+    # its objects in double (TP2_OBJECT_TEXELS_D, 8 each) do not.
+    limit = max(3 * n["lights"], 5 * n["pigments"], 2 * n["finishes"], 4 * n["objects"])
+    c.require(8 * n["objects"] > limit, f"the scene's double objects fit {limit} texels")
+    env = {"TP2_TEXEL_ELEMENTS": str(limit)}
     expect_auto_is_float(c, env, "the double scene does not fit the device")
 
 

@@ -321,9 +321,6 @@ struct buffer {
 #define FRAME_FIELDS(F, T) F(T, eye) F(T, u) F(T, v) F(T, w) F(T, ambient) \
     F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, limits) F(T, counts)           \
     F(T, geometry) F(T, sampling)
-#define LIGHT_FIELDS(F, T) F(T, pos) F(T, color) F(T, att)
-#define PIGMENT_FIELDS(F, T) F(T, color1) F(T, color2) F(T, p) F(T, q) F(T, kind)
-#define FINISH_FIELDS(F, T) F(T, phong) F(T, optics)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color) F(T, signature)
 #define WALK_RAY_FIELDS(F, T) F(T, origin) F(T, dir) F(T, info) F(T, doubt)
 #define TILE_FIELDS(F, T) F(T, tile_origin) F(T, sample_index) F(T, pass_rays) \
@@ -331,13 +328,7 @@ struct buffer {
 
 #define FIELDS(list, T) static const struct field T##_fields[] = {list(FIELD, T)};
 FIELDS(FRAME_FIELDS, gpu_frame_f)
-FIELDS(LIGHT_FIELDS, gpu_light_f)
-FIELDS(PIGMENT_FIELDS, gpu_pigment_f)
-FIELDS(FINISH_FIELDS, gpu_finish_f)
 FIELDS(FRAME_FIELDS, gpu_frame_d)
-FIELDS(LIGHT_FIELDS, gpu_light_d)
-FIELDS(PIGMENT_FIELDS, gpu_pigment_d)
-FIELDS(FINISH_FIELDS, gpu_finish_d)
 FIELDS(WALK_FIELDS, gpu_walk)  /* no reals: the same in both */
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_f)
 FIELDS(WALK_RAY_FIELDS, gpu_walk_ray_d)
@@ -349,18 +340,12 @@ FIELDS(TILE_FIELDS, gpu_tile)
 
 static const struct buffer float_buffers[] = {
     BUFFER("FrameBuf", "Frame", gpu_frame_f, TP2_BINDING_FRAME, 0),
-    BUFFER("LightBuf", "Light", gpu_light_f, TP2_BINDING_LIGHTS, 1),
-    BUFFER("PigmentBuf", "Pigment", gpu_pigment_f, TP2_BINDING_PIGMENTS, 1),
-    BUFFER("FinishBuf", "Finish", gpu_finish_f, TP2_BINDING_FINISHES, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_f, TP2_BINDING_WALK_RAYS, 1),
 };
 
 static const struct buffer double_buffers[] = {
     BUFFER("FrameBuf", "Frame", gpu_frame_d, TP2_BINDING_FRAME, 0),
-    BUFFER("LightBuf", "Light", gpu_light_d, TP2_BINDING_LIGHTS, 1),
-    BUFFER("PigmentBuf", "Pigment", gpu_pigment_d, TP2_BINDING_PIGMENTS, 1),
-    BUFFER("FinishBuf", "Finish", gpu_finish_d, TP2_BINDING_FINISHES, 1),
     BUFFER("WalkBuf", "Walk", gpu_walk, TP2_BINDING_WALKS, 1),
     BUFFER("WalkRayBuf", "WalkRay", gpu_walk_ray_d, TP2_BINDING_WALK_RAYS, 1),
 };
@@ -637,6 +622,9 @@ static void check_module(const struct spv *m, const struct buffer *buffers,
                       "uint");
     check_stats(m);
     check_push_constants(m);
+    check_texel_buffer(m, "light_texels", TP2_BINDING_LIGHTS);
+    check_texel_buffer(m, "pigment_texels", TP2_BINDING_PIGMENTS);
+    check_texel_buffer(m, "finish_texels", TP2_BINDING_FINISHES);
     check_texel_buffer(m, "object_texels", TP2_BINDING_OBJECTS);
     check_texel_buffer(m, "node_texels", TP2_BINDING_BVH);
     /* every binding but the finish pass's output */
