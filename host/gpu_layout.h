@@ -148,6 +148,11 @@ TP2_LIGHT_TEXEL_LAYOUT(gpu_light_f, TP2_ROW_TEXELS_F, TP2_LIGHT_TEXELS_F);
 TP2_LIGHT_TEXEL_LAYOUT(gpu_light_d, TP2_ROW_TEXELS_D, TP2_LIGHT_TEXELS_D);
 TP2_PIGMENT_TEXEL_LAYOUT(gpu_pigment_f, TP2_ROW_TEXELS_F, TP2_PIGMENT_TEXELS_F);
 TP2_PIGMENT_TEXEL_LAYOUT(gpu_pigment_d, TP2_ROW_TEXELS_D, TP2_PIGMENT_TEXELS_D);
+/* An object's extra rows (polyhedron faces, a quadric's center) are
+ * 4-vectors of reals, a row of texels each. */
+_Static_assert(4 * sizeof(float) == TP2_TEXEL_BYTES * TP2_ROW_TEXELS_F &&
+                   4 * sizeof(double) == TP2_TEXEL_BYTES * TP2_ROW_TEXELS_D,
+               "an extra row as the shader's texels");
 _Static_assert(offsetof(struct gpu_finish_f, optics) == TP2_TEXEL_BYTES &&
                    sizeof(struct gpu_finish_f) == TP2_TEXEL_BYTES * TP2_FINISH_TEXELS &&
                    offsetof(struct gpu_finish_d, optics) == TP2_TEXEL_BYTES &&

@@ -341,11 +341,13 @@ static const struct {
 };
 
 /* How the shader reads binding i (tp2_shared.h): lights, pigments,
- * finishes, objects and BVH nodes as texels, the rest as storage buffers. */
+ * finishes, objects, their extra rows and BVH nodes as texels, the rest
+ * as storage buffers. */
 static VkDescriptorType binding_type(uint32_t i)
 {
     return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH || i == TP2_BINDING_LIGHTS ||
-                   i == TP2_BINDING_PIGMENTS || i == TP2_BINDING_FINISHES
+                   i == TP2_BINDING_PIGMENTS || i == TP2_BINDING_FINISHES ||
+                   i == TP2_BINDING_EXTRA
                ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
                : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }

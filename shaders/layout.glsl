@@ -50,14 +50,14 @@ layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { 
 // storage-buffer load is a loop over the SIMD lanes, even of a field
 // all lanes share; a private copy is registers.
 Frame frame;
-// Lights, pigments, finishes, objects and BVH nodes, as texels
-// (tp2_shared.h; read below).
+// Lights, pigments, finishes, objects, the rows objects need beyond
+// their record, and BVH nodes, as texels (tp2_shared.h; read below).
 layout(set = 0, binding = TP2_BINDING_LIGHTS) uniform usamplerBuffer light_texels;
 layout(set = 0, binding = TP2_BINDING_PIGMENTS) uniform usamplerBuffer pigment_texels;
 layout(set = 0, binding = TP2_BINDING_FINISHES) uniform usamplerBuffer finish_texels;
 layout(set = 0, binding = TP2_BINDING_OBJECTS) uniform usamplerBuffer object_texels;
 layout(set = 0, binding = TP2_BINDING_BVH) uniform usamplerBuffer node_texels;
-layout(std430, set = 0, binding = TP2_BINDING_EXTRA) readonly buffer ExtraBuf { rvec4 extra[]; };
+layout(set = 0, binding = TP2_BINDING_EXTRA) uniform usamplerBuffer extra_texels;
 // Texmap images: one word per texel, r | g << 8 | b << 16, rows top to bottom.
 layout(std430, set = 0, binding = TP2_BINDING_TEXELS) readonly buffer TexelBuf { uint texels[]; };
 layout(std430, set = 0, binding = TP2_BINDING_IMAGE) buffer ImageBuf { vec4 pixels[]; };
@@ -116,8 +116,7 @@ layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 #define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
 
 // Object i, one primitive: rows a, b, c (what each kind keeps in them:
-// host/shapes.c) and ids (TP2_SHAPE_*, pigment, finish, first row in
-// extra[]).
+// host/shapes.c) and ids (TP2_SHAPE_*, pigment, finish, first extra_row).
 #ifdef TP2_DOUBLE
 #define OBJECT_TEXELS TP2_OBJECT_TEXELS_D
 #define ROW_TEXELS TP2_ROW_TEXELS_D
@@ -198,6 +197,13 @@ ivec4 pigment_kind(int i) // TP2_PIGMENT_*; texmap: first texel, width, height
 rvec4 object_row(int i, int k)
 {
     return real_texel(object_texels, OBJECT_TEXELS * i + ROW_TEXELS * k);
+}
+
+// Row k of the rows objects keep beyond their record (object_ids(i).w
+// is an object's first).
+rvec4 extra_row(int k)
+{
+    return real_texel(extra_texels, ROW_TEXELS * k);
 }
 
 ivec4 object_ids(int i)

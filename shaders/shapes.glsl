@@ -147,7 +147,7 @@ void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
     scale = max(max_abs(p), abs(plane.w));
 }
 
-// ---- polyhedron: a.x = face count; faces in extra[] as planes -----------
+// ---- polyhedron: a.x = face count; faces in extra rows as planes -----------
 
 // The faces whose outward normals point against the ray are where it
 // enters; the latest such entry and the earliest exit bound the span.
@@ -157,7 +157,7 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
     int faces = int(object_row(i, 0).x);
     Span s = WHOLE_LINE;
     for (int k = 0; k < faces; ++k) {
-        rvec4 f = extra[first + k];
+        rvec4 f = extra_row(first + k);
         real denom = dot(f.xyz, d);
         real dist = dot(f.xyz, o) + f.w; // > 0: o is outside this face
         if (denom == 0.0) {
@@ -176,7 +176,7 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 
 void surface_polyhedron(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 {
-    onto_plane(extra[object_ids(i).w + part], p, n, scale);
+    onto_plane(extra_row(object_ids(i).w + part), p, n, scale);
 }
 
 // ---- box: a = min corner, b = max corner --------------------------------
@@ -363,7 +363,7 @@ void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 c
     curving = vec2(min(tube, ring), max(tube, ring));
 }
 
-// ---- quadric: a = A B C D, b = E F G H, c.xy = I J about extra[ids.w] ----
+// ---- quadric: a = A B C D, b = E F G H, c.xy = I J about extra_row(ids.w) ----
 
 // M y for the symmetric matrix of the quadratic part.
 rvec3 quadric_m(int i, rvec3 y)
@@ -382,7 +382,7 @@ rvec3 quadric_g(int i)
 
 real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
 {
-    rvec3 ref = extra[object_ids(i).w].xyz;
+    rvec3 ref = extra_row(object_ids(i).w).xyz;
     real t0 = on ? real(0.0) : recenter(ref, o, d);
     rvec3 y = o - ref;
     rvec3 g = quadric_g(i);
@@ -404,7 +404,7 @@ real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
 void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale,
                      out vec2 curving)
 {
-    rvec3 ref = extra[object_ids(i).w].xyz;
+    rvec3 ref = extra_row(object_ids(i).w).xyz;
     rvec3 y = p - ref;
     rvec3 my = quadric_m(i, y);
     rvec3 g = quadric_g(i);

@@ -49,7 +49,8 @@
  * (where a storage buffer loads a field all lanes share once per lane): a
  * light is its position (a row: TP2_ROW_TEXELS_*), color and attenuation;
  * a pigment its two colors, rows p and q, then its kind; a finish its
- * phong and optics texels. A double pigment ends in a texel of padding. */
+ * phong and optics texels. A double pigment ends in a texel of padding.
+ * An object's extra rows are a row of texels each. */
 #define TP2_LIGHT_TEXELS_F 3
 #define TP2_LIGHT_TEXELS_D 4
 #define TP2_PIGMENT_TEXELS_F 5

@@ -325,21 +325,20 @@ def case_scene_too_large(c):
     naming which (TP2_STORAGE_RANGE and TP2_TEXEL_ELEMENTS lower the limits
     so that a small scene reaches them), and nothing is written."""
     spheres = "".join(f"0 0 sphere {i} 0 -20 0.5\n" for i in range(100))
-    faces = "".join(f"0 1 0 {-i}\n" for i in range(300))  # 16 bytes each
-    lights = "".join(f"{i} 5 5 0.01 0.01 0.01 1 0 0\n" for i in range(100))
     scene = os.path.join(c.tmp, "scene.txt")
     with open(scene, "w") as f:
-        f.write("0 0 5\n0 0 0\n0 1 0\n40\n101\n0 0 0 1 1 1 0 0 0\n" + lights +
-                "1\nsolid 1 1 1\n1\n1 0 0 1 0 0 1\n101\n" + spheres +
-                "0 0 polyhedron 300\n" + faces)
+        f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n"
+                "1\nsolid 1 1 1\n1\n1 0 0 1 0 0 1\n100\n" + spheres)
     out = c.out()
+    # The frame (208 bytes in float) is a storage buffer, as are texture
+    # texels; the other scene buffers are texel buffers.
     for env, want in ((None, None),
-                      ({"TP2_STORAGE_RANGE": "4096"},
-                       "its polyhedron faces and quadrics need 4800 bytes, and one storage "
-                       "buffer holds at most 4096"),
-                      ({"TP2_TEXEL_ELEMENTS": "403"},
-                       "its objects need 404 texels of 16 bytes, and one texel buffer holds "
-                       "at most 403")):
+                      ({"TP2_STORAGE_RANGE": "200"},
+                       "its camera and settings need 208 bytes, and one storage buffer "
+                       "holds at most 200"),
+                      ({"TP2_TEXEL_ELEMENTS": "399"},
+                       "its objects need 400 texels of 16 bytes, and one texel buffer holds "
+                       "at most 399")):
         status, _, err = run(c.tp2, ["--bvh-min", "1000", scene, out, "8", "6"], env)
         if want is None:
             c.expect(status == 0 and err == "", f"exit {status}, stderr {err!r}")
