@@ -45,10 +45,12 @@ struct BvhNode {
     ivec2 link;
 };
 
-layout(std430, set = 0, binding = TP2_BINDING_FRAME) readonly buffer FrameBuf { Frame frame_buffer; };
+layout(std430, set = 0, binding = TP2_BINDING_FRAME) restrict readonly buffer FrameBuf { Frame frame_buffer; };
 // The frame, copied once per invocation (main): on lavapipe every
 // storage-buffer load is a loop over the SIMD lanes, even of a field
-// all lanes share; a private copy is registers.
+// all lanes share; a private copy is registers. (restrict: nothing else
+// writes it, so a GPU compiler may load a field again rather than hold
+// it.)
 Frame frame;
 // Lights, pigments, finishes, objects, the rows objects need beyond
 // their record, and BVH nodes, as texels (tp2_shared.h; read below).

@@ -46,7 +46,7 @@
 #define TP2_OBJECT_TEXELS_D 8
 #define TP2_NODE_TEXELS 4
 /* Lights, pigments and finishes, the loads of every hit, are texels too
- * (where a storage buffer loads a field all lanes share once per lane): a
+ * (as above: a storage-buffer load is a loop over lavapipe's lanes): a
  * light is its position (a row: TP2_ROW_TEXELS_*), color and attenuation;
  * a pigment its two colors, rows p and q, then its kind; a finish its
  * phong and optics texels. A double pigment ends in a texel of padding.
