@@ -2,8 +2,9 @@
 // Twin of host/gpu_layout_types.h (and struct bvh_gpu_node in host/bvh.h); keep
 // field names, order and types identical: tests/test_layout.c checks the
 // storage buffers' against the SPIR-V, and host/gpu_layout.h pins the
-// records read as texels (lights, pigments, finishes, objects, nodes) to
-// the texel counts of tp2_shared.h that the loaders below use.
+// records read as texels (lights, pigments, finishes, objects, their
+// extra rows, BVH nodes) to the texel counts of tp2_shared.h that the
+// loaders below use.
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
 struct Frame {
