@@ -295,6 +295,27 @@ void count_rays()
     }
 }
 
+// A parked doubt in slot `slot`, written and read at constant indices (a
+// loop over the slots, unrolled): lavapipe then keeps the few slots in
+// registers, where indexing them by slot cost the float pass of
+// --precision auto 8-16% (README "Performance"). The parked rays
+// themselves are no faster so.
+void park_doubt(inout uvec2 parked[STACK_SIZE], int slot, uvec2 doubt)
+{
+    for (int k = 0; k < STACK_SIZE; ++k)
+        if (k == slot)
+            parked[k] = doubt;
+}
+
+uvec2 parked_doubt(uvec2 parked[STACK_SIZE], int slot)
+{
+    uvec2 doubt = uvec2(0u);
+    for (int k = 0; k < STACK_SIZE; ++k)
+        if (k == slot)
+            doubt = parked[k];
+    return doubt;
+}
+
 // One pixel sample, or one saved walk, for one pass (TP2_WALK_*): its walk
 // traces its whole tree, or goes on for pass_rays rays; if it finishes,
 // the sample's share is added to its pixel, else it is saved for the next
@@ -374,7 +395,7 @@ void main()
                                   second, first_doubt, second_doubt);
         if (children == 2 && w.sp < STACK_SIZE) {
             if (SIGNATURES)
-                pending_doubt[w.sp] = packed_doubt(second_doubt);
+                park_doubt(pending_doubt, w.sp, packed_doubt(second_doubt));
             pending[w.sp++] = second;
         }
         if (children > 0) {
@@ -384,7 +405,7 @@ void main()
         } else if (w.sp > 0) {
             w.ray = pending[--w.sp];
             if (SIGNATURES)
-                w.doubt = unpacked_doubt(pending_doubt[w.sp]);
+                w.doubt = unpacked_doubt(parked_doubt(pending_doubt, w.sp));
         } else {
             w.live = false;
         }
