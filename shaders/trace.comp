@@ -298,8 +298,8 @@ void count_rays()
 // A parked doubt in slot `slot`, written and read at constant indices (a
 // loop over the slots, unrolled): lavapipe then keeps the few slots in
 // registers, where indexing them by slot cost the float pass of
-// --precision auto 8-16% (README "Performance"). The parked rays
-// themselves are no faster so.
+// --precision auto 15-20% on glass scenes (README "Performance"). The
+// parked rays themselves were no faster so.
 void park_doubt(inout uvec2 parked[STACK_SIZE], int slot, uvec2 doubt)
 {
     for (int k = 0; k < STACK_SIZE; ++k)
