@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L
 #include "render.h"
 
 #include <math.h>
@@ -6,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "big_alloc.h"
 #include "clock.h"
@@ -119,6 +121,7 @@ struct renderer {
     unsigned char *host_band; /* the last finished band, copied out for the writer */
     uint32_t *last_signatures; /* the previous band's last row's (retracing) */
     bool loop_guard;  /* a CPU device: walks run in passes (TP2_CANARY_STEPS) */
+    uint32_t slabs;   /* a dispatch's slabs of workgroup rows (dispatch_slabs) */
     int walk_capacity;
 };
 
@@ -274,10 +277,10 @@ static bool occluder_hint(void)
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
  * (VkBool32) and ints are all 32-bit words. */
-static void spec_values(const struct scene_features *f, const struct tracer *t,
-                        bool count_rays, bool loop_guard, int walk, int32_t v[TP2_SPEC_COUNT],
-                        VkSpecializationMapEntry map[TP2_SPEC_COUNT])
+static void spec_values(const struct renderer *r, const struct tracer *t, int walk,
+                        int32_t v[TP2_SPEC_COUNT], VkSpecializationMapEntry map[TP2_SPEC_COUNT])
 {
+    const struct scene_features *f = &r->features;
     v[TP2_SPEC_WALK] = walk;
     v[TP2_SPEC_SIGNATURES] = t->signatures;
     v[TP2_SPEC_PIXEL_LIST] = t->pixel_list;
@@ -290,13 +293,49 @@ static void spec_values(const struct scene_features *f, const struct tracer *t,
     v[TP2_SPEC_FOG] = f->fog;
     v[TP2_SPEC_LENS] = f->lens;
     v[TP2_SPEC_AREA] = f->area;
-    v[TP2_SPEC_STATS] = count_rays;
+    v[TP2_SPEC_STATS] = r->count_rays;
     v[TP2_SPEC_SAMPLES] = f->samples;
     v[TP2_SPEC_BVH] = f->bvh;
-    v[TP2_SPEC_LOOP_GUARD] = loop_guard;
+    v[TP2_SPEC_LOOP_GUARD] = r->loop_guard;
     v[TP2_SPEC_OCCLUDER_HINT] = occluder_hint();
+    v[TP2_SPEC_SLABS] = (int32_t)r->slabs;
     for (uint32_t id = 0; id < TP2_SPEC_COUNT; id++)
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
+}
+
+/* Most slabs a dispatch is cut into (lavapipe runs at most 32 threads). */
+#define TP2_MAX_SLABS 32
+
+/* Lavapipe hands each of its threads one contiguous run of a dispatch's
+ * workgroups (lp_cs_tpool.c: workgroups / threads each), and a thread
+ * that finishes its run early takes none of another's. Where the dear
+ * pixels sit together (a glass object in one half of a band), one thread
+ * traced most of the band while the other waited. So a dispatch has a
+ * third dimension, one slab per thread: workgroup (x, y, z) traces
+ * workgroup row y * slabs + z (trace.comp, group_place), and each
+ * thread's run, a slab of z, holds every slabs-th row of the band,
+ * spread over all of it. Lavapipe's threads are LP_NUM_THREADS or one
+ * per CPU; GPUs give workgroups to whatever unit is free: one slab. The
+ * environment variable TP2_DISPATCH_SLABS sets the count (tests). The
+ * shader has it as a specialization constant: read from gl_NumWorkGroups
+ * it made spheres.txt's float render 20% slower on lavapipe. */
+static uint32_t dispatch_slabs(const struct vkc *vk)
+{
+    const char *env = getenv("TP2_DISPATCH_SLABS");
+    bool cpu = vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    if (!env || !*env)
+        env = cpu ? getenv("LP_NUM_THREADS") : NULL;
+    char *end;
+    long n = env && *env ? strtol(env, &end, 10) : !cpu ? 1 : sysconf(_SC_NPROCESSORS_ONLN);
+    if (env && *env && *end != '\0')
+        n = 1;
+    return n < 1 ? 1 : n > TP2_MAX_SLABS ? TP2_MAX_SLABS : (uint32_t)n;
+}
+
+/* Records a dispatch of `across` x `down` workgroups, in r->slabs slabs. */
+static void dispatch_rows(struct renderer *r, uint32_t across, uint32_t down)
+{
+    vkCmdDispatch(r->cmd, across, (down + r->slabs - 1) / r->slabs, r->slabs);
 }
 
 /* Only CPU devices (lavapipe) cut long shader loops short. */
@@ -450,7 +489,7 @@ static int make_pipeline(struct renderer *r, struct tracer *t, int walk)
 {
     int32_t values[TP2_SPEC_COUNT];
     VkSpecializationMapEntry map[TP2_SPEC_COUNT];
-    spec_values(&r->features, t, r->count_rays, r->loop_guard, walk, values, map);
+    spec_values(r, t, walk, values, map);
     VkSpecializationInfo spec = {
         .mapEntryCount = TP2_SPEC_COUNT,
         .pMapEntries = map,
@@ -704,12 +743,12 @@ static int submit_pass(struct renderer *r, struct tracer *t, const struct pass_a
     uint32_t group = TP2_GROUP_X * TP2_GROUP_Y;
     uint32_t rows = (uint32_t)(a->rows + t->signatures);
     if (kind == TP2_WALK_CONTINUE)
-        vkCmdDispatch(r->cmd, (walks + group - 1) / group, 1, 1);
+        dispatch_rows(r, 1, (walks + group - 1) / group);
     else if (t->pixel_list)
-        vkCmdDispatch(r->cmd, (a->listed + group - 1) / group, 1, 1);
+        dispatch_rows(r, 1, (a->listed + group - 1) / group);
     else
-        vkCmdDispatch(r->cmd, (uint32_t)(a->width + TP2_GROUP_X - 1) / TP2_GROUP_X,
-                      (rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y, 1);
+        dispatch_rows(r, (uint32_t)(a->width + TP2_GROUP_X - 1) / TP2_GROUP_X,
+                      (rows + TP2_GROUP_Y - 1) / TP2_GROUP_Y);
     /* Make the shader's writes visible to the next pass, which adds to the
      * pixels, goes on with the walks and clears the started flags, and to
      * the host's reads after the fence. */
@@ -1150,6 +1189,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     r.bytes = opt->bytes;
     r.loop_guard = needs_loop_guard(&r.vk);
+    r.slabs = dispatch_slabs(&r.vk);
     r.band = (struct tracer){.use_double = opt->use_double,
                              .signatures = twin_fits && r.vk.float64};
     r.retrace = (struct tracer){.use_double = true, .pixel_list = true};

@@ -112,6 +112,7 @@ layout(constant_id = TP2_SPEC_WALK) const int WALK = TP2_WALK_WHOLE;
 layout(constant_id = TP2_SPEC_SIGNATURES) const bool SIGNATURES = false;
 layout(constant_id = TP2_SPEC_PIXEL_LIST) const bool PIXEL_LIST = false;
 layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
+layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
 // TP2_SHAPE_*): code for kinds it does not use is compiled out.

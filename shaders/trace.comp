@@ -252,11 +252,19 @@ void camera_ray(real x, real y, vec2 lens_sample, out rvec3 origin, out rvec3 di
     }
 }
 
+// This workgroup's column and row in the dispatch: render.c cuts the rows
+// into SLABS slabs of z, one per thread of lavapipe's, and slab z has rows
+// z, z + SLABS, z + 2 SLABS ... (dispatch_slabs).
+ivec2 group_place()
+{
+    return ivec2(gl_WorkGroupID.x, int(gl_WorkGroupID.y) * SLABS + int(gl_WorkGroupID.z));
+}
+
 // This invocation's place in a one-dimensional dispatch (over saved walks
-// or a pixel list).
+// or a pixel list): a column of workgroups.
 int flat_invocation()
 {
-    return int(gl_WorkGroupID.x) * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
+    return group_place().y * (TP2_GROUP_X * TP2_GROUP_Y) + int(gl_LocalInvocationIndex);
 }
 
 // This invocation's pixel in its workgroup. Lavapipe runs 8 consecutive
@@ -357,7 +365,7 @@ void main()
             int listed = int(pixel_list[at]);
             pixel = ivec2(listed % width, tile_origin.y + listed / width);
         } else { // the band, and the row after it when recording signatures
-            pixel = tile_origin + ivec2(gl_WorkGroupID.xy) * ivec2(TP2_GROUP_X, TP2_GROUP_Y) +
+            pixel = tile_origin + group_place() * ivec2(TP2_GROUP_X, TP2_GROUP_Y) +
                     pixel_in_group();
             if (pixel.x >= width || pixel.y >= height ||
                 pixel.y - tile_origin.y >= tile_rows + int(SIGNATURES))

@@ -337,6 +337,35 @@ def case_walks_go_on(c):
     c.expect(images[0] == images[1] == images[2], "the images depend on the rays per pass")
 
 
+def case_slabs_agree(c):
+    """A dispatch cut into slabs of workgroup rows, one per lavapipe thread
+    (render.c, dispatch_slabs), traces every pixel once: with 1, 2, 3 and
+    7 slabs the bytes are the same, at sizes whose rows of workgroups (29,
+    5) no slab count above 1 divides, in the band pass, in auto's retrace
+    of a list of pixels (a far checkered quadric) and in walks that go on
+    across passes (over the list of saved walks)."""
+    setups = (("retrace", os.path.join(HERE, "stress", "quadric-far.txt"), [], {},
+               ["101", "227"]),
+              ("walks", deep_scene(c), ["--bvh-min", "1000", "--bailout", "0"],
+               {"TP2_PASS_RAYS": "7"}, ["21", "35"]))
+    for name, scene, options, env, size in setups:
+        images = []
+        for slabs in ("1", "2", "3", "7"):
+            out = os.path.join(c.tmp, f"{name}-{slabs}.pfm")
+            status, _, err = run(c.tp2, ["--stats", *options, scene, out, *size],
+                                 dict(env, TP2_DISPATCH_SLABS=slabs))
+            c.require(status == 0 and "warning" not in err, f"{name}, {slabs}: {status} {err!r}")
+            if name == "retrace":
+                c.expect((auto_stats(err)[1] or 0) > 0, f"{slabs} slabs: nothing traced again")
+            else:
+                passes = [int(l.split()[2]) for l in err.splitlines()
+                          if l.startswith("tp2: passes")]
+                c.expect(passes and passes[0] > 1, f"{slabs} slabs: passes {passes}")
+            with open(out, "rb") as f:
+                images.append(f.read())
+        c.expect(all(i == images[0] for i in images), f"{name}: the slabs change the image")
+
+
 def case_loop_limit_warning(c):
     """A single ray that needs more than lavapipe allows one invocation (it
     meets 20 polyhedra of 4096 faces: 81920 face tests) cannot be split:
