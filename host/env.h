@@ -14,4 +14,14 @@ static inline bool env_is(const char *name, const char *value)
     return env && strcmp(env, value) == 0;
 }
 
+/* The whole number environment variable name holds, or `otherwise` where
+ * it is unset, empty or not a number. */
+static inline long env_number(const char *name, long otherwise)
+{
+    const char *env = getenv(name);
+    char *end;
+    long n = env && *env ? strtol(env, &end, 10) : 0;
+    return env && *env && *end == '\0' ? n : otherwise;
+}
+
 #endif

@@ -303,7 +303,9 @@ static void spec_values(const struct renderer *r, const struct tracer *t, int wa
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }
 
-/* Most slabs a dispatch is cut into (lavapipe runs at most 32 threads). */
+/* Most slabs a dispatch is cut into: lavapipe runs at most 16 or 32
+ * threads (by version); more slabs than threads still spread each
+ * thread's run over the band. */
 #define TP2_MAX_SLABS 32
 
 /* Lavapipe hands each of its threads one contiguous run of a dispatch's
@@ -321,14 +323,10 @@ static void spec_values(const struct renderer *r, const struct tracer *t, int wa
  * it made spheres.txt's float render 20% slower on lavapipe. */
 static uint32_t dispatch_slabs(const struct vkc *vk)
 {
-    const char *env = getenv("TP2_DISPATCH_SLABS");
-    bool cpu = vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    if (!env || !*env)
-        env = cpu ? getenv("LP_NUM_THREADS") : NULL;
-    char *end;
-    long n = env && *env ? strtol(env, &end, 10) : !cpu ? 1 : sysconf(_SC_NPROCESSORS_ONLN);
-    if (env && *env && *end != '\0')
-        n = 1;
+    long n = 1;
+    if (vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        n = env_number("LP_NUM_THREADS", sysconf(_SC_NPROCESSORS_ONLN));
+    n = env_number("TP2_DISPATCH_SLABS", n);
     return n < 1 ? 1 : n > TP2_MAX_SLABS ? TP2_MAX_SLABS : (uint32_t)n;
 }
 
@@ -379,16 +377,12 @@ static const struct {
      {tp2_trace_double_curved, sizeof tp2_trace_double_curved}},
 };
 
-/* How the shader reads binding i (tp2_shared.h): lights, pigments,
- * finishes, objects, their extra rows and BVH nodes as texels, the rest
- * as storage buffers. */
+/* How the shader reads binding i (tp2_shared.h): TP2_TEXEL_BINDINGS as
+ * texels, the rest as storage buffers. */
 static VkDescriptorType binding_type(uint32_t i)
 {
-    return i == TP2_BINDING_OBJECTS || i == TP2_BINDING_BVH || i == TP2_BINDING_LIGHTS ||
-                   i == TP2_BINDING_PIGMENTS || i == TP2_BINDING_FINISHES ||
-                   i == TP2_BINDING_EXTRA
-               ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
-               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return TP2_TEXEL_BINDINGS >> i & 1u ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+                                        : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 /* The passes in use, in passes; returns how many. */

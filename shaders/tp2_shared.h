@@ -5,9 +5,9 @@
 #ifndef TP2_SHARED_H
 #define TP2_SHARED_H
 
-/* Descriptor bindings, all in set 0, all storage buffers but the objects
- * and the BVH, which are texel buffers (below). The scene's inputs come
- * first, the image and the stats after them. */
+/* Descriptor bindings, all in set 0, storage buffers but for the
+ * TP2_TEXEL_BINDINGS (below). The scene's inputs come first, the image
+ * and the stats after them. */
 #define TP2_BINDING_FRAME 0
 #define TP2_BINDING_LIGHTS 1
 #define TP2_BINDING_PIGMENTS 2
@@ -25,6 +25,11 @@
 #define TP2_BINDING_PIXEL_LIST 14 /* band pixels a list pass traces again */
 #define TP2_BINDING_OUTPUT 15 /* the finished band as the file needs it (finish.comp) */
 #define TP2_BINDING_COUNT 16
+/* The bindings read as texel buffers (below), one bit each. */
+#define TP2_TEXEL_BINDINGS                                                   \
+    (1u << TP2_BINDING_LIGHTS | 1u << TP2_BINDING_PIGMENTS |                 \
+     1u << TP2_BINDING_FINISHES | 1u << TP2_BINDING_OBJECTS |                \
+     1u << TP2_BINDING_BVH | 1u << TP2_BINDING_EXTRA)
 
 /* finish.comp: TP2_FINISH_GROUP pixels per workgroup; its one
  * specialization constant says whether the file takes 8-bit values (one

@@ -563,22 +563,27 @@ static void check_texel_buffer(const struct spv *m, const char *name, long bindi
 static void check_binding_set(const struct spv *m, unsigned mask)
 {
     int seen[TP2_BINDING_COUNT] = {0};
-    int stray = 0;
+    int stray = 0, misread = 0;
     SPV_FOR(m, i, op, wc) {
         if (op != OP_VARIABLE || wc < 4 ||
             (m->w[i + 3] != SC_STORAGE_BUFFER && m->w[i + 3] != SC_UNIFORM_CONSTANT))
             continue;
         long b = spv_decoration(m, m->w[i + 2], DEC_BINDING);
-        if (b >= 0 && b < TP2_BINDING_COUNT)
+        if (b >= 0 && b < TP2_BINDING_COUNT) {
             seen[b]++;
-        else
+            /* texels exactly where render.c binds texel buffers */
+            misread += (m->w[i + 3] == SC_UNIFORM_CONSTANT) != (TP2_TEXEL_BINDINGS >> b & 1);
+        } else {
             stray++;
+        }
     }
     int ok = stray == 0;
     for (int b = 0; b < TP2_BINDING_COUNT; b++)
         ok &= seen[b] == (int)(mask >> b & 1);
     expect(ok, "%s: storage and texel buffers bound exactly once each at 0x%x (%d stray)",
            m->label, mask, stray);
+    expect(misread == 0, "%s: %d bindings read otherwise than TP2_TEXEL_BINDINGS says",
+           m->label, misread);
 }
 
 /* Bindings are distinct and below TP2_BINDING_COUNT, as the host's
