@@ -100,7 +100,11 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     if (st->in_place)
         fprintf(stderr, "; %.1f MiB of them read in place", (double)st->in_place / (1 << 20));
     fputs(")\n", stderr);
-    fprintf(stderr, "tp2: pipeline   %8.3f s\n", st->pipeline);
+    fprintf(stderr, "tp2: pipeline   %8.3f s", st->pipeline);
+    if (st->pipeline_beside > 0)
+        fprintf(stderr, " (waited for; made in %.3f s beside bvh and upload)",
+                st->pipeline_beside);
+    fputc('\n', stderr);
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);
     if (st->retracing)

@@ -393,8 +393,7 @@ static int tracers(struct renderer *r, struct tracer *passes[2])
     return retracing(r) ? 2 : 1;
 }
 
-/* The descriptor set layout, the pipeline layout, and each pass's shader
- * module of its precision and the kinds the scene needs. */
+/* The descriptor set layout and the pipeline layout. */
 static int create_layouts(struct renderer *r)
 {
     VkDescriptorSetLayoutBinding bindings[TP2_BINDING_COUNT];
@@ -425,6 +424,13 @@ static int create_layouts(struct renderer *r)
     };
     TP2_VK_TRY(vkCreatePipelineLayout(r->vk.device, &layout_info, NULL,
                                       &r->pipeline_layout));
+    return 0;
+}
+
+/* Each pass's shader module, of its precision and the kinds the scene
+ * needs. */
+static int create_modules(struct renderer *r)
+{
     enum kind_tier tier = kind_tier(&r->features);
     struct tracer *passes[2];
     bool fused = fused_requested();
@@ -1094,9 +1100,66 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
     return 0;
 }
 
+/* The passes this device runs and how: under --precision auto a float
+ * pass that records signatures and a retrace pass in double, where the
+ * device has shaderFloat64 and the double scene fits it (twin_fits). */
+static void plan_passes(struct renderer *r, const struct render_options *opt,
+                        const struct scene_features *f, bool twin_fits)
+{
+    r->features = *f;
+    r->count_rays = opt->count_rays;
+    r->bytes = opt->bytes;
+    r->loop_guard = needs_loop_guard(&r->vk);
+    r->slabs = dispatch_slabs(&r->vk);
+    r->band = (struct tracer){.use_double = opt->use_double,
+                              .signatures = opt->retrace && twin_fits && r->vk.float64};
+    r->retrace = (struct tracer){.use_double = true, .pixel_list = true};
+    r->band.pass_rays = pass_rays(r->loop_guard, &r->band.walking);
+    r->retrace.pass_rays = pass_rays(r->loop_guard, &r->retrace.walking);
+    r->walk_capacity = r->loop_guard ? TP2_WALK_CAPACITY : 1;
+    r->eager_retrace = retracing(r) && (double)opt->width * opt->height * f->samples >=
+                                           eager_retrace_samples();
+}
+
+/* The passes' shader modules and the band pass's pipeline; the retrace
+ * pass's, if eager_retrace, on a thread of its own (side_job). */
+static int make_passes(struct renderer *r)
+{
+    if (create_modules(r) != 0)
+        return -1;
+    if (r->eager_retrace)
+        side_job(r, &r->retrace_making, retrace_job);
+    return need_pipeline(r, &r->band, TP2_WALK_WHOLE);
+}
+
+/* The layouts, the finish pipeline (on a thread of its own) and the
+ * passes'. */
+static int make_pipelines(struct renderer *r)
+{
+    if (create_layouts(r) != 0)
+        return -1;
+    side_job(r, &r->finishing, finish_job);
+    return make_passes(r);
+}
+
+/* Undoes make_passes, to plan again. */
+static void unmake_passes(struct renderer *r)
+{
+    join_side(r, &r->retrace_making);
+    struct tracer *passes[2] = {&r->band, &r->retrace};
+    for (int p = 0; p < 2; p++) {
+        for (int k = 0; k < TP2_WALK_KINDS; k++) {
+            vkDestroyPipeline(r->vk.device, passes[p]->pipelines[k], NULL);
+            passes[p]->pipelines[k] = VK_NULL_HANDLE;
+        }
+        vkDestroyShaderModule(r->vk.device, passes[p]->shader, NULL);
+        passes[p]->shader = VK_NULL_HANDLE;
+    }
+}
+
 /* Vulkan instance and device creation on a thread of its own, so that it
- * runs while the scene is packed and its BVH built (on lavapipe 0.09 s,
- * on a discrete GPU's driver 0.15 s or more). */
+ * runs while the scene is packed and its BVH built (on lavapipe 0.03-0.09
+ * s, on a discrete GPU's driver 0.15 s or more). */
 struct device_job {
     struct vkc *vk;
     struct vkc_options opt;
@@ -1111,6 +1174,69 @@ static void *create_device(void *arg)
     job->rc = vkc_create(job->vk, &job->opt);
     job->seconds = clock_seconds() - t0;
     return NULL;
+}
+
+/* Packing on a thread of its own too, so that this thread makes the band
+ * pass's pipeline (on lavapipe 0.04-0.18 s, by the kinds it has; a GPU's
+ * driver takes longer for one its cache lacks) as soon as the device is
+ * made and packing knows the scene's features (pack_options.
+ * features_known), beside the BVH's build. Made here, not on the device's
+ * thread: on lavapipe that made small scenes' runs 5-7% slower (measured
+ * side by side, cause not found). */
+struct pack_job {
+    const struct scene *s;
+    struct pack_options opt;
+    struct packed_scene *packed, *twin;
+    pthread_mutex_t lock;
+    pthread_cond_t changed;
+    bool known; /* features holds the scene's */
+    bool done;  /* rc and finished are set */
+    struct scene_features features;
+    int rc;
+    double finished; /* clock_seconds() when packing was done */
+};
+
+static void features_known(const struct scene_features *f, void *user)
+{
+    struct pack_job *job = user;
+    pthread_mutex_lock(&job->lock);
+    job->features = *f;
+    job->known = true;
+    pthread_cond_signal(&job->changed);
+    pthread_mutex_unlock(&job->lock);
+}
+
+static void *pack(void *arg)
+{
+    struct pack_job *job = arg;
+    int rc = scene_pack(job->s, &job->opt, job->packed, job->twin);
+    pthread_mutex_lock(&job->lock);
+    job->rc = rc;
+    job->finished = clock_seconds();
+    job->done = true;
+    pthread_cond_signal(&job->changed);
+    pthread_mutex_unlock(&job->lock);
+    return NULL;
+}
+
+/* Waits until packing knows the scene's features or is done; returns
+ * whether the features are known. */
+static bool wait_features(struct pack_job *job)
+{
+    pthread_mutex_lock(&job->lock);
+    while (!job->known && !job->done)
+        pthread_cond_wait(&job->changed, &job->lock);
+    bool known = job->known;
+    pthread_mutex_unlock(&job->lock);
+    return known;
+}
+
+static bool pack_done(struct pack_job *job)
+{
+    pthread_mutex_lock(&job->lock);
+    bool done = job->done;
+    pthread_mutex_unlock(&job->lock);
+    return done;
 }
 
 /* What --stats says of the precision: the one used, or auto's passes. */
@@ -1133,33 +1259,65 @@ int render_scene(const struct scene *s, const struct render_options *opt,
 {
     struct renderer r = {0};
     struct packed_scene packed = {0}, twin = {0};
-    struct vkc_options vk_opt = {
-        .device_index = opt->device_index,
-        .need_float64 = opt->use_double && !opt->double_where,
-        .want_float64 = opt->use_double || opt->retrace || fused_requested(),
-        .validate = opt->validate,
+    struct device_job device = {
+        .vk = &r.vk,
+        .opt = {
+            .device_index = opt->device_index,
+            .need_float64 = opt->use_double && !opt->double_where,
+            .want_float64 = opt->use_double || opt->retrace || fused_requested(),
+            .validate = opt->validate,
+        },
     };
-    struct pack_options pack_opt = {
-        .width = opt->width,
-        .height = opt->height,
-        .use_double = opt->use_double,
-        .samples = opt->samples,
-        .bvh_min = opt->bvh_min,
-        .bailout = opt->bailout,
+    struct pack_job packing = {
+        .s = s,
+        .opt = {
+            .width = opt->width,
+            .height = opt->height,
+            .use_double = opt->use_double,
+            .samples = opt->samples,
+            .bvh_min = opt->bvh_min,
+            .bailout = opt->bailout,
+            .features_known = features_known,
+            .user = &packing,
+        },
+        .packed = &packed,
+        .twin = opt->retrace ? &twin : NULL,
+        .lock = PTHREAD_MUTEX_INITIALIZER,
+        .changed = PTHREAD_COND_INITIALIZER,
     };
     int rc = -1;
     memset(stats, 0, sizeof *stats);
-    struct device_job job = {.vk = &r.vk, .opt = vk_opt};
-    pthread_t thread;
-    bool threaded = pthread_create(&thread, NULL, create_device, &job) == 0;
-    if (!threaded)
-        create_device(&job);
+    pthread_t device_thread, pack_thread;
+    bool device_threaded = pthread_create(&device_thread, NULL, create_device, &device) == 0;
+    if (!device_threaded)
+        create_device(&device);
     double t1 = clock_seconds();
-    int packed_rc = scene_pack(s, &pack_opt, &packed, opt->retrace ? &twin : NULL);
-    double t_packed = clock_seconds();
-    if (threaded)
-        pthread_join(thread, NULL);
-    if (job.rc != 0 || check_band_fits(&r.vk, opt->width) != 0)
+    bool pack_threaded = pthread_create(&pack_thread, NULL, pack, &packing) == 0;
+    if (!pack_threaded)
+        pack(&packing);
+    bool known = wait_features(&packing);
+    if (device_threaded)
+        pthread_join(device_thread, NULL);
+    /* Where packing goes on (a large scene), the pipelines are made now,
+     * beside it, planned as if the double scene fits the device (checked
+     * once it is packed, below); else after the buffers, as a small
+     * scene's render starts 2-5% faster on lavapipe when its buffers are
+     * not made just before it. TP2_EARLY_PIPELINES=1 makes them now
+     * whatever the scene (tests). A scene that needs double on a device
+     * without it is refused below. */
+    bool early = known && device.rc == 0 && (!opt->use_double || r.vk.float64) &&
+                 (!pack_done(&packing) || env_is("TP2_EARLY_PIPELINES", "1"));
+    int made_rc = 0;
+    double t_make = clock_seconds();
+    if (early) {
+        plan_passes(&r, opt, &packing.features, true);
+        made_rc = make_pipelines(&r);
+    }
+    double t_made = clock_seconds();
+    if (pack_threaded)
+        pthread_join(pack_thread, NULL);
+    double t_packed = packing.finished;
+    if (device.rc != 0 || check_band_fits(&r.vk, opt->width) != 0)
         goto done;
     if (opt->double_where && !r.vk.float64) {
         fprintf(stderr, "%s: error: %s, and device '%s' has no shaderFloat64 to render "
@@ -1171,28 +1329,26 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         fprintf(stderr, "%s: note: %s: rendering in double precision\n",
                 opt->double_where, opt->double_what);
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
-    if (packed_rc != 0) {
+    if (packing.rc != 0) {
         fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the device\n",
                 s->nobjects);
         goto done;
     }
-    if (check_scene_fits(&r.vk, &packed, opt->use_double, false) != 0)
+    if (made_rc != 0 || check_scene_fits(&r.vk, &packed, opt->use_double, false) != 0)
         goto done;
     bool twin_fits = opt->retrace && check_scene_fits(&r.vk, &twin, true, true) == 0;
     double t_buffers = clock_seconds();
-    r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
-    r.bytes = opt->bytes;
-    r.loop_guard = needs_loop_guard(&r.vk);
-    r.slabs = dispatch_slabs(&r.vk);
-    r.band = (struct tracer){.use_double = opt->use_double,
-                             .signatures = twin_fits && r.vk.float64};
-    r.retrace = (struct tracer){.use_double = true, .pixel_list = true};
-    r.band.pass_rays = pass_rays(r.loop_guard, &r.band.walking);
-    r.retrace.pass_rays = pass_rays(r.loop_guard, &r.retrace.walking);
-    r.walk_capacity = r.loop_guard ? TP2_WALK_CAPACITY : 1;
+    if (!early) {
+        plan_passes(&r, opt, &packed.features, twin_fits);
+    } else if (!twin_fits && retracing(&r)) { /* planned as if it fit: plan again */
+        unmake_passes(&r);
+        plan_passes(&r, opt, &packed.features, false);
+        if (make_passes(&r) != 0)
+            goto done;
+    }
+    double t_planned = clock_seconds();
     describe_precision(&r, opt, twin_fits, stats);
-    r.eager_retrace = retracing(&r) && (double)opt->width * opt->height *
-                                               packed.features.samples >= eager_retrace_samples();
+    r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;
     double t2 = clock_seconds();
@@ -1200,32 +1356,26 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         stats->in_place += r.buffers[i].imported ? r.buffers[i].size : 0;
         stats->in_place += r.twin[i].imported ? r.twin[i].size : 0;
     }
-    r.features = packed.features;
-    r.count_rays = opt->count_rays;
-    /* The retrace pass's pipelines, like the walks', are made when first
-     * needed (a scene where no pixel needs double never makes them), but
-     * for a large image its first one is made now (side_job). */
-    if (create_layouts(&r) != 0)
-        goto done;
-    side_job(&r, &r.finishing, finish_job);
-    if (r.eager_retrace)
-        side_job(&r, &r.retrace_making, retrace_job);
-    if (need_pipeline(&r, &r.band, TP2_WALK_WHOLE) != 0 || create_descriptors(&r) != 0 ||
+    if ((!early && make_pipelines(&r) != 0) || create_descriptors(&r) != 0 ||
         create_commands(&r) != 0)
         goto done;
     double t3 = clock_seconds();
-    double made = r.pipeline_time;
+    r.pipeline_time = 0; /* counted in the phases above */
     if (run_bands(&r, opt->width, opt->height, packed.features.samples, opt->progress,
                   on_rows, user, stats) != 0)
         goto done;
     read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
     stats->pass_rays = r.band.pass_rays;
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
-    stats->device = job.seconds;
+    stats->device = device.seconds;
+    stats->pipeline_beside = early ? t_made - t_make : 0;
     stats->bvh = packed.bvh_time;
-    stats->upload = (t_packed - t1 - packed.bvh_time) + (t2 - t_buffers);
-    stats->pipeline = t3 - t2 + (r.pipeline_time - made);
-    stats->render -= r.pipeline_time - made; /* walk pipelines made on the way */
+    stats->upload = (t_packed - t1 - packed.bvh_time) + (t2 - t_planned);
+    /* What making the device and the early pipelines kept waiting once
+     * packing was done, then what was made after it. */
+    double waited = t_made > t_packed ? t_made - t_packed : 0;
+    stats->pipeline = waited + (t_planned - t_buffers) + (t3 - t2) + r.pipeline_time;
+    stats->render -= r.pipeline_time; /* pipelines made on the way */
     rc = 0;
 done:
     renderer_destroy(&r);

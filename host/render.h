@@ -38,6 +38,9 @@ struct render_options {
  * time spent in the row callback). */
 struct render_stats {
     double device, pipeline, bvh, upload, render, readback, write;
+    double pipeline_beside; /* making the pipelines beside bvh and upload
+                             * (a large scene); pipeline counts only what
+                             * was waited for */
     uint64_t in_place;    /* bytes of the scene the device reads from the
                            * host's arrays instead of a copy */
     int bands, band_rows; /* bands rendered, rows in each (the last: fewer) */

@@ -241,10 +241,11 @@ static void bounded_box(const void *source, size_t i, double box[6])
     shape_kinds[o->kind].bounds(scene_object_reals(b->s, o), o->count, ref->k, box, box + 3);
 }
 
-/* Slots: every object's primitives, the bounded ones first in the BVH's
- * order, then the unbounded ones in scene order. */
-static int layout_objects(const struct scene *s, struct layout *lay,
-                          double *bvh_time)
+/* Slots: every object's primitives, the bounded ones first (in scene
+ * order until order_bounded puts them in the BVH's), then the unbounded
+ * ones in scene order. `bounded` gets the bounded ones' references. */
+static int classify_objects(const struct scene *s, struct layout *lay,
+                            struct prim_ref **bounded)
 {
     lay->nprims = 0;
     for (size_t i = 0; i < s->nobjects; i++) {
@@ -255,47 +256,52 @@ static int layout_objects(const struct scene *s, struct layout *lay,
         lay->nextra += kind->extra_rows(p, o->count);
     }
     size_t n = lay->nprims ? lay->nprims : 1;
-    struct prim_ref *bounded = big_alloc(n * sizeof *bounded);
+    *bounded = big_alloc(n * sizeof **bounded);
     lay->slots = big_alloc(n * sizeof *lay->slots);
-    int rc = -1;
-    if (bounded && lay->slots) {
-        size_t nb = 0, nu = lay->nprims;
-        for (size_t i = 0; i < s->nobjects; i++) {
-            const struct scene_object *o = &s->objects[i];
-            const struct shape_kind *kind = &shape_kinds[o->kind];
-            const double *p = scene_object_reals(s, o);
-            size_t count = kind->primitives(p, o->count);
-            for (size_t k = 0; k < count; k++) {
-                struct prim_ref ref = {i, k};
-                double lo[3], hi[3]; /* asked for again by the build */
-                if (kind->bounds(p, o->count, k, lo, hi)) {
-                    bounded[nb++] = ref;
-                    lay->bounded_kinds |= 1 << kind->gpu_kind;
-                } else {
-                    lay->slots[--nu] = ref; /* filled from the end */
-                    lay->unbounded_kinds |= 1 << kind->gpu_kind;
-                }
+    if (!*bounded || !lay->slots)
+        return -1;
+    size_t nb = 0, nu = lay->nprims;
+    for (size_t i = 0; i < s->nobjects; i++) {
+        const struct scene_object *o = &s->objects[i];
+        const struct shape_kind *kind = &shape_kinds[o->kind];
+        const double *p = scene_object_reals(s, o);
+        size_t count = kind->primitives(p, o->count);
+        for (size_t k = 0; k < count; k++) {
+            struct prim_ref ref = {i, k};
+            double lo[3], hi[3]; /* asked for again by the build */
+            if (kind->bounds(p, o->count, k, lo, hi)) {
+                (*bounded)[nb++] = ref;
+                lay->bounded_kinds |= 1 << kind->gpu_kind;
+            } else {
+                lay->slots[--nu] = ref; /* filled from the end */
+                lay->unbounded_kinds |= 1 << kind->gpu_kind;
             }
         }
-        /* The unbounded came in reverse: restore scene order. */
-        for (size_t a = nb, b = lay->nprims; a + 1 < b; a++, b--) {
-            struct prim_ref t = lay->slots[a];
-            lay->slots[a] = lay->slots[b - 1];
-            lay->slots[b - 1] = t;
-        }
-        lay->nbounded = nb;
-        double t0 = clock_seconds();
-        struct bounded_prims source = {s, bounded};
-        int built = bvh_build_from(bounded_box, &source, nb, &lay->bvh);
-        *bvh_time = clock_seconds() - t0;
-        if (built == 0) {
-            for (size_t slot = 0; slot < nb; slot++)
-                lay->slots[slot] = bounded[lay->bvh.order[slot]];
-            rc = 0;
-        }
     }
-    free(bounded);
-    return rc;
+    /* The unbounded came in reverse: restore scene order. */
+    for (size_t a = nb, b = lay->nprims; a + 1 < b; a++, b--) {
+        struct prim_ref t = lay->slots[a];
+        lay->slots[a] = lay->slots[b - 1];
+        lay->slots[b - 1] = t;
+    }
+    lay->nbounded = nb;
+    return 0;
+}
+
+/* Builds the BVH over the bounded primitives and puts their slots in its
+ * order. */
+static int order_bounded(const struct scene *s, struct layout *lay,
+                         const struct prim_ref *bounded, double *bvh_time)
+{
+    double t0 = clock_seconds();
+    struct bounded_prims source = {s, bounded};
+    int built = bvh_build_from(bounded_box, &source, lay->nbounded, &lay->bvh);
+    *bvh_time = clock_seconds() - t0;
+    if (built != 0)
+        return -1;
+    for (size_t slot = 0; slot < lay->nbounded; slot++)
+        lay->slots[slot] = bounded[lay->bvh.order[slot]];
+    return 0;
 }
 
 /* Each texture's first texel in the texel buffer. */
@@ -360,14 +366,20 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     struct layout lay = {.samples = opt->samples ? opt->samples
                                     : s->has_samples ? s->samples : 1};
     camera_basis(s, opt->width, opt->height, &lay.cam);
+    struct prim_ref *bounded = NULL;
+    int rc = classify_objects(s, &lay, &bounded);
     out->features = scene_features(s, lay.samples);
-    int rc = layout_objects(s, &lay, &out->bvh_time);
-    if (rc == 0)
-        rc = layout_texels(s, &lay);
     out->features.bounded_shape = single_kind(lay.bounded_kinds);
     out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
+    if (rc == 0 && opt->features_known)
+        opt->features_known(&out->features, opt->user);
+    if (rc == 0)
+        rc = order_bounded(s, &lay, bounded, &out->bvh_time);
+    free(bounded);
+    if (rc == 0)
+        rc = layout_texels(s, &lay);
     /* The twin (--precision auto's double scene) is packed beside the
      * rest: for a million spheres it is 128 MB of its own. */
     struct twin_job job = {s, &lay, opt, twin, 0};

@@ -29,6 +29,11 @@ struct pack_options {
     int samples;     /* samples per pixel; 0: the scene's, else 1 */
     int bvh_min; /* use the BVH from this many bounded objects; 0: default */
     double bailout;  /* rays of smaller weight are not traced; 0: all are */
+    /* Called with the scene's features once they are known, before the
+     * BVH is built (render.c makes the device and its pipeline from then
+     * on, beside the build); NULL: not called. */
+    void (*features_known)(const struct scene_features *f, void *user);
+    void *user;
 };
 
 struct packed_scene {

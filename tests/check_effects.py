@@ -480,6 +480,28 @@ def case_retrace_pipeline_eager(c):
              "the eagerly made retrace pipeline changed the image")
 
 
+def case_pipelines_before_buffers(c):
+    """The pipelines made beside packing, before the scene's buffers (a
+    large scene's way, TP2_EARLY_PIPELINES=1 forcing it on a small one;
+    --stats says so), the retrace's made eagerly or not, give the image of
+    those made after the buffers, with no validation message."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    images = []
+    for early, eager in (("0", "1e30"), ("1", "1e30"), ("1", "0")):
+        out = os.path.join(c.tmp, f"o{len(images)}.ppm")
+        env = {"TP2_EARLY_PIPELINES": early, "TP2_EAGER_RETRACE": eager}
+        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"], env)
+        c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+        c.require(retraced and int(retraced.group(1)) > 0, f"no pixel traced again: {err!r}")
+        beside = re.search(r"tp2: pipeline +[0-9.]+ s \(waited for; made in [0-9.]+ s beside",
+                           err)
+        c.expect(bool(beside) == (early == "1"), f"early {early}: --stats {err!r}")
+        images.append(read_ppm(out)[2])
+    c.expect(images[0] == images[1] == images[2],
+             "pipelines made before the buffers changed the image")
+
+
 def shifted_spheres(dx, dy):
     """tests/render/many-spheres.txt moved by (dx, dy, 0): the camera, the
     lights and the spheres (the floor z = 0 and its 2-unit checker stay,
@@ -757,7 +779,8 @@ def case_auto_without_float64(c):
 def case_auto_double_too_large(c):
     """Where the double scene would not fit the device (objects take twice
     the texels in double: TP2_TEXEL_ELEMENTS between the two) auto renders
-    float alone, and --stats says so."""
+    float alone, and --stats says so, whether its pipelines were made
+    before the scene was packed or after."""
     status, out, err = run(c.tp2, ["--dump-scene", scene_file(c.tmp, "e.txt", effects_scene())])
     c.require(status == 0, f"--dump-scene: exit {status}: {err}")
     n = {k: len(json.loads(out)[k]) for k in ("lights", "pigments", "finishes", "objects")}
@@ -765,8 +788,11 @@ def case_auto_double_too_large(c):
     # its objects in double (TP2_OBJECT_TEXELS_D, 8 each) do not.
     limit = max(3 * n["lights"], 5 * n["pigments"], 2 * n["finishes"], 4 * n["objects"])
     c.require(8 * n["objects"] > limit, f"the scene's double objects fit {limit} texels")
-    env = {"TP2_TEXEL_ELEMENTS": str(limit)}
-    expect_auto_is_float(c, env, "the double scene does not fit the device")
+    # Pipelines made before the scene is packed (a large scene's, forced
+    # here) are planned as if the double scene fits, then made again.
+    for early in ("0", "1"):
+        env = {"TP2_TEXEL_ELEMENTS": str(limit), "TP2_EARLY_PIPELINES": early}
+        expect_auto_is_float(c, env, "the double scene does not fit the device")
 
 
 def ppm_differences(a, b):
