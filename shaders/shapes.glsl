@@ -323,9 +323,9 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
     // quartic over s. Else the quartic's, cut where its slope (a cubic)
     // is zero.
     rvec4 cubic = on ? rvec4(c.y, c.z, c.w, 1.0) : rvec4(c.y, 2.0 * c.z, 3.0 * c.w, 4.0);
-    rvec4 roots = cubic_roots(cubic, lo, hi);
+    rvec4 roots = cubic_roots(cubic, lo, hi, on ? ROOT_TOL : CUT_TOL);
     if (!on)
-        roots = roots_between(1.0, c, roots.xyz, lo, hi);
+        roots = roots_between(1.0, c, roots.xyz, lo, hi, ROOT_TOL);
     // The first root that is on the tube (not the lemon) and ahead.
     real found = NO_HIT;
     for (int k = 0; k < 4 && roots.x < NO_HIT && found == NO_HIT; ++k) {
