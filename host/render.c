@@ -1121,8 +1121,11 @@ static void plan_passes(struct renderer *r, const struct render_options *opt,
                                            eager_retrace_samples();
 }
 
-/* The passes' shader modules and the band pass's pipeline; the retrace
- * pass's, if eager_retrace, on a thread of its own (side_job). */
+/* The passes' shader modules and the band pass's pipeline. The retrace
+ * pass's pipelines, like the walks', are made when first needed (a scene
+ * where no pixel needs double never makes them), but for a large image
+ * (eager_retrace) its first one is made now, on a thread of its own
+ * (side_job). */
 static int make_passes(struct renderer *r)
 {
     if (create_modules(r) != 0)
@@ -1371,9 +1374,9 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     stats->pipeline_beside = early ? t_made - t_make : 0;
     stats->bvh = packed.bvh_time;
     stats->upload = (t_packed - t1 - packed.bvh_time) + (t2 - t_planned);
-    /* What making the device and the early pipelines kept waiting once
-     * packing was done, then what was made after it. */
-    double waited = t_made > t_packed ? t_made - t_packed : 0;
+    /* What the early pipelines kept waiting once packing was done (early
+     * only when packing outlasted the device), then what was made after. */
+    double waited = early && t_made > t_packed ? t_made - t_packed : 0;
     stats->pipeline = waited + (t_planned - t_buffers) + (t3 - t2) + r.pipeline_time;
     stats->render -= r.pipeline_time; /* pipelines made on the way */
     rc = 0;
