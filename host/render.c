@@ -973,6 +973,22 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
     return rc;
 }
 
+/* The passes' pipelines and shader modules, destroyed (make_passes undone,
+ * to plan again or at the end). */
+static void unmake_passes(struct renderer *r)
+{
+    join_side(r, &r->retrace_making);
+    struct tracer *passes[2] = {&r->band, &r->retrace};
+    for (int p = 0; p < 2; p++) {
+        for (int k = 0; k < TP2_WALK_KINDS; k++) {
+            vkDestroyPipeline(r->vk.device, passes[p]->pipelines[k], NULL);
+            passes[p]->pipelines[k] = VK_NULL_HANDLE;
+        }
+        vkDestroyShaderModule(r->vk.device, passes[p]->shader, NULL);
+        passes[p]->shader = VK_NULL_HANDLE;
+    }
+}
+
 static void renderer_destroy(struct renderer *r)
 {
     VkDevice d = r->vk.device;
@@ -983,14 +999,11 @@ static void renderer_destroy(struct renderer *r)
         vkDestroyFence(d, r->fence, NULL);
         vkDestroyCommandPool(d, r->command_pool, NULL);
         vkDestroyDescriptorPool(d, r->pool, NULL);
-        struct tracer *passes[2] = {&r->band, &r->retrace};
-        for (int p = 0; p < 2; p++) {
-            for (int i = 0; i < TP2_BINDING_COUNT; i++)
-                vkDestroyBufferView(d, passes[p]->views[i], NULL);
-            for (int k = 0; k < TP2_WALK_KINDS; k++)
-                vkDestroyPipeline(d, passes[p]->pipelines[k], NULL);
-            vkDestroyShaderModule(d, passes[p]->shader, NULL);
+        for (int i = 0; i < TP2_BINDING_COUNT; i++) {
+            vkDestroyBufferView(d, r->band.views[i], NULL);
+            vkDestroyBufferView(d, r->retrace.views[i], NULL);
         }
+        unmake_passes(r);
         vkDestroyPipeline(d, r->finish, NULL);
         vkDestroyShaderModule(d, r->finish_shader, NULL);
         vkDestroyPipelineLayout(d, r->pipeline_layout, NULL);
@@ -1145,21 +1158,6 @@ static int make_pipelines(struct renderer *r)
     return make_passes(r);
 }
 
-/* Undoes make_passes, to plan again. */
-static void unmake_passes(struct renderer *r)
-{
-    join_side(r, &r->retrace_making);
-    struct tracer *passes[2] = {&r->band, &r->retrace};
-    for (int p = 0; p < 2; p++) {
-        for (int k = 0; k < TP2_WALK_KINDS; k++) {
-            vkDestroyPipeline(r->vk.device, passes[p]->pipelines[k], NULL);
-            passes[p]->pipelines[k] = VK_NULL_HANDLE;
-        }
-        vkDestroyShaderModule(r->vk.device, passes[p]->shader, NULL);
-        passes[p]->shader = VK_NULL_HANDLE;
-    }
-}
-
 /* Vulkan instance and device creation on a thread of its own, so that it
  * runs while the scene is packed and its BVH built (on lavapipe 0.03-0.09
  * s, on a discrete GPU's driver 0.15 s or more). */
@@ -1192,7 +1190,8 @@ struct pack_job {
     struct packed_scene *packed, *twin;
     pthread_mutex_t lock;
     pthread_cond_t changed;
-    bool known; /* features holds the scene's */
+    bool known; /* features holds the scene's (a copy: packed is the
+                 * packing thread's until joined, and freed on failure) */
     bool done;  /* rc and finished are set */
     struct scene_features features;
     int rc;
