@@ -25,7 +25,8 @@
  *               reference point extra[0] (its center when it has one)
  *               and scaled so the largest is 1
  *   triangle    a, b, c = the corners, with the unit normal
- *               (counter-clockwise seen from outside) in their w */
+ *               (counter-clockwise seen from outside) in their w
+ * and then moved (each kind's move) so that scene_pack.c's origin is 0. */
 #include "shapes.h"
 
 #include <errno.h>
@@ -128,6 +129,27 @@ static void box_empty(double lo[3], double hi[3])
     }
 }
 
+/* Point v (xyz) with origin at 0. */
+static void move_point(double v[4], const double origin[3])
+{
+    for (int a = 0; a < 3; a++)
+        v[a] -= origin[a];
+}
+
+/* Plane v (unit normal, d: n.x + d = 0) with origin at 0. */
+static void move_plane(double v[4], const double origin[3])
+{
+    v[3] += vec3_dot(v, origin);
+}
+
+/* Kinds whose only point is row a (a center, a base). */
+static void move_first_row(struct shape_record *rec, double (*extra)[4],
+                           const double origin[3])
+{
+    (void)extra;
+    move_point(rec->row[0], origin);
+}
+
 /* ---- sphere ------------------------------------------------------------ */
 
 static int sphere_read(struct scene_reader *r)
@@ -171,6 +193,12 @@ static void plane_pack(const double *p, size_t n, size_t k, struct shape_record 
     unit_plane(p, rec->row[0]);
 }
 
+static void plane_move(struct shape_record *rec, double (*extra)[4], const double origin[3])
+{
+    (void)extra;
+    move_plane(rec->row[0], origin);
+}
+
 /* ---- polyhedron -------------------------------------------------------- */
 
 static int polyhedron_read(struct scene_reader *r)
@@ -207,6 +235,13 @@ static void polyhedron_pack(const double *p, size_t n, size_t k, struct shape_re
         unit_plane(p + 4 * i, extra[i]);
 }
 
+static void polyhedron_move(struct shape_record *rec, double (*extra)[4],
+                            const double origin[3])
+{
+    for (size_t i = 0; i < (size_t)rec->row[0][0]; i++)
+        move_plane(extra[i], origin);
+}
+
 /* ---- box --------------------------------------------------------------- */
 
 static int box_read(struct scene_reader *r)
@@ -238,6 +273,13 @@ static void box_pack(const double *p, size_t n, size_t k, struct shape_record *r
     box_bounds(p, n, k, lo, hi);
     record_row(rec, 0, lo, 0);
     record_row(rec, 1, hi, 0);
+}
+
+static void box_move(struct shape_record *rec, double (*extra)[4], const double origin[3])
+{
+    (void)extra;
+    move_point(rec->row[0], origin);
+    move_point(rec->row[1], origin);
 }
 
 /* ---- cylinder and cone ------------------------------------------------- */
@@ -449,6 +491,14 @@ static void quadric_pack(const double *q, size_t n, size_t k, struct shape_recor
     record_row((struct shape_record *)extra, 0, ref, 0);
 }
 
+/* Only the reference point moves: the coefficients are about it. */
+static void quadric_move(struct shape_record *rec, double (*extra)[4],
+                         const double origin[3])
+{
+    (void)rec;
+    move_point(extra[0], origin);
+}
+
 /* ---- triangle and mesh -------------------------------------------------- */
 
 /* The unit normal of triangle t (corners counter-clockwise seen from the
@@ -508,6 +558,14 @@ static void triangle_pack(const double *p, size_t n, size_t k, struct shape_reco
         record_row(rec, i, t + 3 * i, normal[i]);
 }
 
+static void triangle_move(struct shape_record *rec, double (*extra)[4],
+                          const double origin[3])
+{
+    (void)extra;
+    for (int i = 0; i < 3; i++)
+        move_point(rec->row[i], origin);
+}
+
 static int mesh_read(struct scene_reader *r)
 {
     char *path = NULL;
@@ -547,26 +605,26 @@ static int mesh_read(struct scene_reader *r)
 
 const struct shape_kind shape_kinds[SHAPE_COUNT] = {
     [SHAPE_SPHERE] = {"sphere", TP2_SHAPE_SPHERE, sphere_read, one_primitive,
-                      sphere_bounds, no_extra, sphere_pack},
+                      sphere_bounds, no_extra, sphere_pack, move_first_row},
     [SHAPE_PLANE] = {"plane", TP2_SHAPE_PLANE, plane_read, one_primitive, unbounded,
-                     no_extra, plane_pack},
+                     no_extra, plane_pack, plane_move},
     [SHAPE_POLYHEDRON] = {"polyhedron", TP2_SHAPE_POLYHEDRON, polyhedron_read,
                           one_primitive, polyhedron_bounds, polyhedron_extra,
-                          polyhedron_pack},
+                          polyhedron_pack, polyhedron_move},
     [SHAPE_BOX] = {"box", TP2_SHAPE_BOX, box_read, one_primitive, box_bounds, no_extra,
-                   box_pack},
+                   box_pack, box_move},
     [SHAPE_CYLINDER] = {"cylinder", TP2_SHAPE_CYLINDER, cylinder_read, one_primitive,
-                        cylinder_bounds, no_extra, cylinder_pack},
+                        cylinder_bounds, no_extra, cylinder_pack, move_first_row},
     [SHAPE_CONE] = {"cone", TP2_SHAPE_CONE, cone_read, one_primitive, cone_bounds,
-                    no_extra, cone_pack},
+                    no_extra, cone_pack, move_first_row},
     [SHAPE_TORUS] = {"torus", TP2_SHAPE_TORUS, torus_read, one_primitive, torus_bounds,
-                     no_extra, torus_pack},
+                     no_extra, torus_pack, move_first_row},
     [SHAPE_QUADRIC] = {"quadric", TP2_SHAPE_QUADRIC, quadric_read, one_primitive,
-                       unbounded, quadric_extra, quadric_pack},
+                       unbounded, quadric_extra, quadric_pack, quadric_move},
     [SHAPE_TRIANGLE] = {"triangle", TP2_SHAPE_TRIANGLE, triangle_read, triangle_count,
-                        triangle_bounds, no_extra, triangle_pack},
+                        triangle_bounds, no_extra, triangle_pack, triangle_move},
     [SHAPE_MESH] = {"mesh", TP2_SHAPE_TRIANGLE, mesh_read, triangle_count,
-                    triangle_bounds, no_extra, triangle_pack},
+                    triangle_bounds, no_extra, triangle_pack, triangle_move},
 };
 
 double shape_extent(int k, const double *p, size_t n)

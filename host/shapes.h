@@ -54,6 +54,10 @@ struct shape_kind {
     /* Fills primitive k's record and its extra rows. */
     void (*pack)(const double *p, size_t n, size_t k, struct shape_record *rec,
                  double (*extra)[4]);
+    /* Moves a record and its extra rows, as pack filled them, so that
+     * `origin` becomes 0: points lose it, planes (unit normal, d) gain
+     * n . origin. Directions and sizes stay. */
+    void (*move)(struct shape_record *rec, double (*extra)[4], const double origin[3]);
 };
 
 extern const struct shape_kind shape_kinds[SHAPE_COUNT];

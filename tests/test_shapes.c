@@ -4,7 +4,8 @@
  * Bounds must contain every point of the shape (checked on points spread
  * over each surface) and be tight; polyhedra are bounded or not as their
  * faces say; a triangle's record carries the normal its winding gives; a
- * quadric's record, about its reference point, is the same function.
+ * quadric's record, about its reference point, is the same function;
+ * a record moved to a new origin is the record of the moved shape.
  * Prints "N passed, M failed" last. */
 #include <math.h>
 #include <stdio.h>
@@ -256,11 +257,74 @@ static void test_quadric_record(void)
     CHECK(extra[0][0] == 0 && extra[0][1] == 0 && extra[0][2] == 0);
 }
 
+/* A record moved to origin o is the record of the shape written at p - o
+ * (numbers chosen so that every step is exact), for every kind whose
+ * numbers are points, sizes and unit planes; the quadric's reference point
+ * moves and its coefficients, about that point, stay. */
+static void test_moved_records(void)
+{
+    const double o[3] = {4096, -8192.5, 2048.25};
+    static const struct {
+        int kind;
+        size_t count;
+        double p[16];
+        const char *points; /* 'p': starts a point of three numbers */
+    } cases[] = {
+        {SHAPE_SPHERE, 4, {4097, -8190, 2050.5, 1.5}, "p..."},
+        {SHAPE_BOX, 6, {4095, -8193, 2047, 4099, -8191, 2049}, "p..p.."},
+        {SHAPE_CYLINDER, 7, {4096, -8192, 2048, 4096, -8189, 2052, 0.5}, "p..p..."},
+        {SHAPE_CONE, 8, {4096, -8192, 2048, 1, 4099, -8192, 2052, 0.25}, "p...p..."},
+        {SHAPE_TORUS, 8, {4100, -8190, 2040, 0, 3, 4, 2, 0.5}, "p......."},
+        {SHAPE_TRIANGLE, 9, {4096, -8192, 2048, 4098, -8192, 2048, 4096, -8190, 2049},
+         "p..p..p.."},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        const struct shape_kind *kind = &shape_kinds[cases[c].kind];
+        double moved[16];
+        memcpy(moved, cases[c].p, sizeof moved);
+        for (size_t i = 0; i < cases[c].count; i++)
+            if (cases[c].points[i] == 'p')
+                for (int a = 0; a < 3; a++)
+                    moved[i + a] -= o[a];
+        struct shape_record a, b;
+        double extra[1][4];
+        memset(&a, 0, sizeof a);
+        memset(&b, 0, sizeof b);
+        kind->pack(cases[c].p, cases[c].count, 0, &a, extra);
+        kind->move(&a, extra, o);
+        kind->pack(moved, cases[c].count, 0, &b, extra);
+        expect(memcmp(&a, &b, sizeof a) == 0, "%s: moved record differs", kind->keyword);
+    }
+    /* Planes and faces: n.x + d = 0 (n a unit) gains n.o. */
+    const double plane[4] = {0, 0, 2, -6000}, faces[8] = {0, 1, 0, 8000, 0, 0, -1, 2000};
+    struct shape_record rec;
+    double extra[2][4];
+    shape_kinds[SHAPE_PLANE].pack(plane, 4, 0, &rec, extra);
+    shape_kinds[SHAPE_PLANE].move(&rec, extra, o);
+    CHECK(rec.row[0][3] == -3000 + 2048.25);
+    shape_kinds[SHAPE_POLYHEDRON].pack(faces, 8, 0, &rec, extra);
+    shape_kinds[SHAPE_POLYHEDRON].move(&rec, extra, o);
+    CHECK(extra[0][3] == 8000 - 8192.5 && extra[1][3] == 2000 - 2048.25);
+    /* The quadric: its reference point moves, its coefficients stay. */
+    const double q[10] = {1, 2, 1, 0, 0, 0, -2 * 4097, 4 * 8190, -2 * 2050,
+                          4097.0 * 4097 + 2 * 8190.0 * 8190 + 2050.0 * 2050 - 4};
+    struct shape_record before;
+    double ref[1][4];
+    shape_kinds[SHAPE_QUADRIC].pack(q, 10, 0, &before, ref);
+    double was[3] = {ref[0][0], ref[0][1], ref[0][2]};
+    rec = before;
+    shape_kinds[SHAPE_QUADRIC].move(&rec, ref, o);
+    CHECK(memcmp(&rec, &before, sizeof rec) == 0);
+    CHECK(ref[0][0] == was[0] - o[0] && ref[0][1] == was[1] - o[1] &&
+          ref[0][2] == was[2] - o[2]);
+}
+
 int main(void)
 {
     test_round_bounds();
     test_convex_bounds();
     test_triangle_record();
     test_quadric_record();
+    test_moved_records();
     return unit_report();
 }
