@@ -150,3 +150,16 @@ void seen(inout uint sig, float pixels, float stake)
     if (at_stake(stake) && pixels >= frame.limits.y)
         sig |= SENSITIVE;
 }
+
+// Marks sig UNSURE where the hit point itself may be off by frame.limits.y
+// pixels or more: a steep highlight or texture moved that far changes the
+// pixel by levels with no decision flipped (a far camera under a narrow
+// field of view, where float's error is a share of every footprint). For
+// camera rays only, whose doubt is their own rounding: deeper, it carries
+// the beam's spread through lenses, and in glass interiors would mark
+// pixels that no measured image got wrong (README.TXT "Accuracy").
+void shifted(inout uint sig, float pixels, float stake)
+{
+    if (at_stake(stake) && pixels >= frame.limits.y)
+        sig |= UNSURE;
+}

@@ -116,6 +116,8 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     float sizes = hit_rounding(h.object) * float(scale + max_abs(ray.origin));
     HitDoubt hd = doubt_at(doubt, float(h.t), sizes, cosine, bend);
     seen(sig, max(hd.pixels, far_pixels(doubt)), stake);
+    if (ray.depth == 0)
+        shifted(sig, hd.pixels, stake);
     decided(sig, uint(h.part));
     if (at_stake(stake) && cosine < hd.angle) // entering or leaving
         sig |= UNSURE;
