@@ -624,6 +624,17 @@ int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out)
     return 0;
 }
 
+void bvh_move(struct bvh *b, const double origin[3])
+{
+    for (size_t i = 0; i < b->node_count; i++) {
+        struct bvh_node *n = &b->nodes[i];
+        for (int a = 0; a < 3; a++) {
+            n->lo[a] = float_below((double)n->lo[a] - origin[a]);
+            n->hi[a] = float_above((double)n->hi[a] - origin[a]);
+        }
+    }
+}
+
 void bvh_free(struct bvh *b)
 {
     free(b->nodes);

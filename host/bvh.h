@@ -90,6 +90,10 @@ int bvh_build(const double (*boxes)[6], size_t n, struct bvh *b);
 typedef void bvh_box_fn(const void *source, size_t i, double box[6]);
 int bvh_build_from(bvh_box_fn *box_at, const void *source, size_t n, struct bvh *b);
 
+/* Moves every node's bounds by -origin, rounded outward, so that they
+ * hold the shapes moved the same way. */
+void bvh_move(struct bvh *b, const double origin[3]);
+
 /* Frees the arrays and zeroes b; safe on a zeroed one. */
 void bvh_free(struct bvh *b);
 

@@ -12,11 +12,10 @@
 #define TP2_T(name) TP2_CAT(name, TP2_SUFFIX)
 
 struct TP2_T(gpu_frame) {
-    TP2_RVEC4(eye);     /* xyz: camera position, from origin */
+    TP2_RVEC4(eye);     /* xyz: camera position, from scene_pack.c's origin */
     TP2_RVEC4(u);       /* xyz: right, scaled by half the image width */
     TP2_RVEC4(v);       /* xyz: up, scaled by half the image height */
     TP2_RVEC4(w);       /* xyz: unit view direction (image plane at 1) */
-    TP2_RVEC4(origin);  /* xyz: where the GPU's coordinates start (scene_pack.c) */
     TP2_VEC4(ambient);  /* rgb: color of light 0 */
     TP2_VEC4(background);
     TP2_VEC4(fog);      /* rgb, density */

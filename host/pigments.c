@@ -2,14 +2,18 @@
  *
  * GPU records (layout.glsl's Pigment):
  *   solid     color1
- *   checker   color1 (even cells), color2 (odd), p.x = cube side
+ *   checker   color1 (even cells), color2 (odd), p.x = cube side,
+ *             p.yzw = the packed origin (scene_pack.c), which the shader
+ *             adds back: cells are the scene's
  *   gradient  color1 at point p, color2 at p + 1 / q: the color is
  *             mix(color1, color2, clamp((x - p) . q, 0, 1)),
  *             q = (p1 - p0) / |p1 - p0|^2
  *   texmap    p = the s row, q = the t row; the texture's texels, size
- *             and place in the texel buffer come from scene_pack.c */
+ *             and place in the texel buffer come from scene_pack.c
+ * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,6 +30,11 @@ static int solid_read(struct scene_reader *r, struct scene_pigment *pg)
 static void solid_pack(const struct scene_pigment *pg, struct pigment_record *rec)
 {
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
+}
+
+static void unmoved(struct pigment_record *rec, const double origin[3])
+{
+    (void)rec, (void)origin;
 }
 
 static void solid_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
@@ -46,6 +55,13 @@ static void checker_pack(const struct scene_pigment *pg, struct pigment_record *
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
     memcpy(rec->color2, pg->color2, sizeof rec->color2);
     rec->p[0] = pg->scale;
+}
+
+/* Exact: the origin is a float, and p + origin in the shader puts a point
+ * on a cell face back on it. */
+static void checker_move(struct pigment_record *rec, const double origin[3])
+{
+    memcpy(rec->p + 1, origin, 3 * sizeof *origin);
 }
 
 static void checker_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
@@ -77,6 +93,11 @@ static void gradient_pack(const struct scene_pigment *pg, struct pigment_record 
     memcpy(rec->p, pg->p0, sizeof pg->p0);
     for (int i = 0; i < 3; i++)
         rec->q[i] = u[i] / len;
+}
+
+static void gradient_move(struct pigment_record *rec, const double origin[3])
+{
+    vec3_sub(rec->p, origin, rec->p);
 }
 
 static void gradient_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
@@ -139,6 +160,22 @@ static void texmap_pack(const struct scene_pigment *pg, struct pigment_record *r
     rec->texture = (long)pg->texture;
 }
 
+/* A row r . (x y z 1) of points moved by -origin: its constant gains
+ * r . origin, of which only the fraction counts (the texture repeats), and
+ * keeping that alone keeps float's s and t as fine as near 0. */
+static void move_row(double r[4], const double origin[3])
+{
+    double shift = vec3_dot(r, origin);
+    if (shift != 0)
+        r[3] = fmod(r[3] + shift, 1.0);
+}
+
+static void texmap_move(struct pigment_record *rec, const double origin[3])
+{
+    move_row(rec->p, origin);
+    move_row(rec->q, origin);
+}
+
 static void texmap_json(FILE *out, const struct scene *s, const struct scene_pigment *pg)
 {
     const struct scene_texture *t = &s->textures[pg->texture];
@@ -151,12 +188,14 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
 }
 
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
-    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, solid_json},
+    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, unmoved,
+                       solid_json},
     [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack,
-                         checker_json},
+                         checker_move, checker_json},
     [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
-                          gradient_json},
-    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_json},
+                          gradient_move, gradient_json},
+    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_move,
+                        texmap_json},
 };
 
 const char *pigment_keywords(void)

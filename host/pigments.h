@@ -36,6 +36,10 @@ struct pigment_kind {
      * textures. 0 or -1. */
     int (*read)(struct scene_reader *r, struct scene_pigment *pg);
     void (*pack)(const struct scene_pigment *pg, struct pigment_record *rec);
+    /* Moves a record as pack filled it so that `origin` becomes 0, as
+     * shapes.h's move does to objects: the pigment stays where the scene
+     * put it. */
+    void (*move)(struct pigment_record *rec, const double origin[3]);
     /* Writes its fields for tp2 --dump-scene (scene_json.h): `"a": ...,
      * "b": ...`, without braces. */
     void (*json)(FILE *out, const struct scene *s, const struct scene_pigment *pg);

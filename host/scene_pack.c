@@ -40,8 +40,8 @@ struct prim_ref {
 /* Everything both packings share, computed once in double. */
 struct layout {
     struct camera_basis cam;
-    double span[6];           /* box of the eye and the bounded primitives */
     double origin[3];         /* where the GPU's coordinates start: place_origin */
+    bool moved;               /* origin != 0 */
     double eye[3];            /* from origin */
     size_t nprims, nbounded;  /* slots [0, nbounded) are in BVH order */
     struct prim_ref *slots;   /* slot -> primitive */
@@ -148,6 +148,8 @@ static void pigment_record(const struct scene *s, const struct layout *lay, size
     memset(rec, 0, sizeof *rec);
     rec->texture = -1;
     pigment_kinds[pg->kind].pack(pg, rec);
+    if (lay->moved)
+        pigment_kinds[pg->kind].move(rec, lay->origin);
     kind[0] = pigment_kinds[pg->kind].gpu_kind;
     if (rec->texture >= 0) {
         const struct scene_texture *t = &s->textures[rec->texture];
@@ -186,8 +188,15 @@ static void object_record(const struct scene *s, const struct layout *lay, size_
     ids[2] = (int32_t)o->finish;
     ids[3] = (int32_t)*extra_at;
     kind->pack(p, o->count, ref->k, rec, extra + *extra_at);
-    kind->move(rec, extra + *extra_at, lay->origin);
     *extra_at += kind->extra_rows(p, o->count);
+}
+
+/* Slot's record and extra rows moved so that the layout's origin is 0. */
+static void move_record(const struct scene *s, const struct layout *lay, size_t slot,
+                        struct shape_record *rec, double (*extra)[4])
+{
+    const struct scene_object *o = &s->objects[lay->slots[slot].object];
+    shape_kinds[o->kind].move(rec, extra, lay->origin);
 }
 
 #define TP2_REAL float
@@ -235,25 +244,14 @@ static int single_kind(int kinds)
 struct bounded_prims {
     const struct scene *s;
     const struct prim_ref *refs;
-    const double *origin;
 };
 
-/* Primitive i's box, moved as its record is (origin at 0), then widened
- * by the subtraction's rounding (at most half an ulp, 2^-53 |d|) so that it
- * still holds the moved record's shape. */
 static void bounded_box(const void *source, size_t i, double box[6])
 {
     const struct bounded_prims *b = source;
     const struct prim_ref *ref = &b->refs[i];
     const struct scene_object *o = &b->s->objects[ref->object];
     shape_kinds[o->kind].bounds(scene_object_reals(b->s, o), o->count, ref->k, box, box + 3);
-    for (int a = 0; a < 6; a++) {
-        if (b->origin[a % 3] == 0)
-            continue; /* as it is: nothing to round */
-        double d = box[a] - b->origin[a % 3];
-        double ulps = fabs(d) * 0x1p-51;
-        box[a] = a < 3 ? d - ulps : d + ulps;
-    }
 }
 
 /* Slots: every object's primitives, the bounded ones first (in scene
@@ -263,8 +261,6 @@ static int classify_objects(const struct scene *s, struct layout *lay,
                             struct prim_ref **bounded)
 {
     lay->nprims = 0;
-    for (int a = 0; a < 3; a++)
-        lay->span[a] = lay->span[a + 3] = s->eye[a];
     for (size_t i = 0; i < s->nobjects; i++) {
         const struct scene_object *o = &s->objects[i];
         const struct shape_kind *kind = &shape_kinds[o->kind];
@@ -288,10 +284,6 @@ static int classify_objects(const struct scene *s, struct layout *lay,
             double lo[3], hi[3]; /* asked for again by the build */
             if (kind->bounds(p, o->count, k, lo, hi)) {
                 (*bounded)[nb++] = ref;
-                for (int a = 0; a < 3; a++) {
-                    lay->span[a] = fmin(lay->span[a], lo[a]);
-                    lay->span[a + 3] = fmax(lay->span[a + 3], hi[a]);
-                }
                 lay->bounded_kinds |= 1 << kind->gpu_kind;
             } else {
                 lay->slots[--nu] = ref; /* filled from the end */
@@ -316,23 +308,34 @@ static int classify_objects(const struct scene *s, struct layout *lay,
  * primitives) lies further from 0 than it is wide, by a multiple of a power
  * of two at least that wide. Points then differ from the origin exactly
  * in double as a rule, and the origin is a float, so that a point on a
- * checker's cell face stays on it when pigments add it back. Elsewhere the
- * origin is 0, and nothing changes (moving a scene around 0 to its eye
- * made float worse: objects near 0 then rounded at their distance). */
+ * checker's cell face stays on it when the checker adds it back
+ * (pigments.c). Elsewhere the origin is 0, and nothing changes (moving a
+ * scene around 0 to its eye made float worse: objects near 0 then rounded
+ * at their distance). */
 static void place_origin(const struct scene *s, struct layout *lay)
 {
+    double span[6]; /* the eye's point and the BVH's root box */
+    bool boxed = lay->bvh.node_count > 0;
+    for (int a = 0; a < 3; a++) {
+        span[a] = boxed ? fmin(s->eye[a], lay->bvh.nodes[0].lo[a]) : s->eye[a];
+        span[a + 3] = boxed ? fmax(s->eye[a], lay->bvh.nodes[0].hi[a]) : s->eye[a];
+    }
     double width = 0;
     for (int a = 0; a < 3; a++)
-        width = fmax(width, lay->span[a + 3] - lay->span[a]);
+        width = fmax(width, span[a + 3] - span[a]);
     double step = width > 0 ? exp2(ceil(log2(width))) : 0;
+    lay->moved = false;
     for (int a = 0; a < 3; a++) {
-        double mid = (lay->span[a] + lay->span[a + 3]) / 2;
+        double mid = (span[a] + span[a + 3]) / 2;
         double at = 0;
         if (fabs(mid) > width)
             at = step > 0 ? round(mid / step) * step : mid;
         lay->origin[a] = (float)at;
         lay->eye[a] = s->eye[a] - lay->origin[a];
+        lay->moved |= lay->origin[a] != 0;
     }
+    if (lay->moved)
+        bvh_move(&lay->bvh, lay->origin);
 }
 
 /* Builds the BVH over the bounded primitives and puts their slots in its
@@ -341,7 +344,7 @@ static int order_bounded(const struct scene *s, struct layout *lay,
                          const struct prim_ref *bounded, double *bvh_time)
 {
     double t0 = clock_seconds();
-    struct bounded_prims source = {s, bounded, lay->origin};
+    struct bounded_prims source = {s, bounded};
     int built = bvh_build_from(bounded_box, &source, lay->nbounded, &lay->bvh);
     *bvh_time = clock_seconds() - t0;
     if (built != 0)
@@ -415,7 +418,6 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     camera_basis(s, opt->width, opt->height, &lay.cam);
     struct prim_ref *bounded = NULL;
     int rc = classify_objects(s, &lay, &bounded);
-    place_origin(s, &lay);
     out->features = scene_features(s, lay.samples);
     out->features.bounded_shape = single_kind(lay.bounded_kinds);
     out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
@@ -425,6 +427,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         opt->features_known(&out->features, opt->user);
     if (rc == 0)
         rc = order_bounded(s, &lay, bounded, &out->bvh_time);
+    if (rc == 0)
+        place_origin(s, &lay);
     free(bounded);
     if (rc == 0)
         rc = layout_texels(s, &lay);

@@ -8,11 +8,10 @@
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
 struct Frame {
-    rvec4 eye;        // from origin
+    rvec4 eye;        // from the origin the scene was packed from (scene_pack.c)
     rvec4 u;          // right, scaled to half the image plane's width
     rvec4 v;          // up, scaled to half its height
     rvec4 w;          // unit view direction
-    rvec4 origin;     // where positions start: the scene's point at 0 here
     vec4 ambient;     // rgb: color of light 0
     vec4 background;
     vec4 fog;         // rgb, density

@@ -57,12 +57,17 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, float doubt, inout uint sig)
 {
     int kind = pigment_kind(index).x;
     if (USES_PIGMENT(TP2_PIGMENT_CHECKER) && kind == TP2_PIGMENT_CHECKER) {
-        real size = pigment_p(index).x;
-        rvec3 x = p / size;
+        // Cells are the scene's: yzw is where the packed origin lies in it
+        // (0 unless the scene was moved; host/pigments.c), and adding it
+        // rounds by a share of its size.
+        rvec4 cube = pigment_p(index);
+        real size = cube.x;
+        rvec3 x = (p + cube.yzw) / size;
         rvec3 cell = floor(x);
         real k = cell.x + cell.y + cell.z;
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
-        if (SIGNATURES && doubt > 0.0 && unsure_cell(x, cell, size, nf, doubt))
+        float moved = ROUNDING * float(max_abs(cube.yzw));
+        if (SIGNATURES && doubt > 0.0 && unsure_cell(x, cell, size, nf, doubt + moved))
             sig |= UNSURE;
         return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }

@@ -138,13 +138,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     ivec4 ids = object_ids(h.object);
     Finish fin = load_finish(ids.z);
     sh.fin = fin;
-    // Pigments are in the scene's own coordinates (frame.origin, 0 unless
-    // the scene lies far from 0); adding the origin back rounds by a share
-    // of it, which a checker's cell test allows for.
-    rvec3 at = sh.p + frame.origin.xyz;
-    float pigment_doubt =
-        at_stake(stake) ? hd.along + ROUNDING * float(max_abs(frame.origin.xyz)) : 0.0;
-    sh.pig = pigment_color(ids.y, at, nf, pigment_doubt, sig);
+    sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
     vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample

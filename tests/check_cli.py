@@ -330,11 +330,11 @@ def case_scene_too_large(c):
         f.write("0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n"
                 "1\nsolid 1 1 1\n1\n1 0 0 1 0 0 1\n100\n" + spheres)
     out = c.out()
-    # The frame (224 bytes in float) is a storage buffer, as are texture
+    # The frame (208 bytes in float) is a storage buffer, as are texture
     # texels; the other scene buffers are texel buffers.
     for env, want in ((None, None),
                       ({"TP2_STORAGE_RANGE": "200"},
-                       "its camera and settings need 224 bytes, and one storage buffer "
+                       "its camera and settings need 208 bytes, and one storage buffer "
                        "holds at most 200"),
                       ({"TP2_TEXEL_ELEMENTS": "399"},
                        "its objects need 400 texels of 16 bytes, and one texel buffer holds "

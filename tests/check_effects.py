@@ -712,14 +712,16 @@ BAILOUT = repr(1 / 255)  # the default, spelled out for --precision double
 
 def translated_scene(dx, dy, dz):
     """A scene with a mirror, glass and a shadow of every bounded kind but
-    the quadric (whose center is solved for, not moved), moved by dx dy dz.
-    Every number is a short binary fraction, so the move is exact."""
+    the quadric (whose center is solved for, not moved), a gradient and a
+    texture (tex.ppm, repeating every 4 units) on the floor, moved by dx
+    dy dz. Every number is a short binary fraction, so the move is exact."""
     def p(x, y, z):
         return f"{x + dx!r} {y + dy!r} {z + dz!r}"
     return (f"{p(0.5, 3, 9)}\n{p(0, 0.5, 0)}\n0 1 0\n40\n"
             f"3\n0 0 0 0.2 0.2 0.2 0 0 0\n{p(4, 8, 6)} 0.8 0.7 0.6 1 0 0\n"
             f"{p(-5, 6, 2)} 0.5 0.6 0.8 1 0 0\n"
-            "3\nsolid 0.9 0.4 0.3\nsolid 0.3 0.8 0.9\nsolid 0.9 0.9 0.8\n"
+            f"4\nsolid 0.9 0.4 0.3\ngradient {p(-4, 0, 0)} {p(4, 0, 0)} 0.3 0.8 0.9 0.9 0.2 0.6\n"
+            "solid 0.9 0.9 0.8\ntexmap tex.ppm 0.25 0 0 0.5 0 0 0.25 0\n"
             "3\n0.1 0.7 0.4 50 0 0 1\n0.05 0.2 0.5 100 0.75 0 1\n"
             "0.02 0.1 0.5 100 0.1 0.85 1.5\n"
             "9\n"
@@ -732,7 +734,7 @@ def translated_scene(dx, dy, dz):
             f"1 0 triangle {p(-4, 0, 0)} {p(-3, 0, 1)} {p(-3.5, 2, 0.5)}\n"
             f"0 0 polyhedron 3\n1 0 0 {-(4.5 + dx)!r}\n0 0 1 {-(-4 + dz)!r}\n"
             f"0 -1 0 {dy!r}\n"
-            f"2 0 plane 0 1 0 {-dy!r}\n")
+            f"3 0 plane 0 1 0 {-dy!r}\n")
 
 
 def case_translation_invariant(c):
@@ -741,6 +743,9 @@ def case_translation_invariant(c):
     positions reach the GPU from the eye's float (scene_pack.c), so float
     rounds them as it would near the origin."""
     near, far = translated_scene(0, 0, 0), translated_scene(4096, -8192, 2048)
+    with open(os.path.join(c.tmp, "tex.ppm"), "w") as f:
+        f.write("P3 4 4 255\n" + " ".join(f"{(37 * i) % 256} {(91 * i) % 256} {(13 * i) % 256}"
+                                           for i in range(16)) + "\n")
     for options in (["--precision", "float"], [], ["--precision", "double"]):
         a = c.image(near, (96, 72), options, name="near")
         b = c.image(far, (96, 72), options, name="far")

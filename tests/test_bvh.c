@@ -871,6 +871,34 @@ static void check_edges(void)
     bvh_free(&b);
 }
 
+/* A tree moved by -origin (bvh_move) is a tree over its spheres moved the
+ * same way: every box still holds them, each parent its children. */
+static void check_moved(void)
+{
+    const double origin[3] = {4096, -8192.5, 2048.25};
+    const size_t n = 1000;
+    double (*near)[4] = make_set(SET_UNIFORM, n, 77);
+    double (*far)[4] = malloc(n * sizeof *far);
+    if (!near || !far) {
+        fputs("test_bvh: out of memory\n", stderr);
+        exit(2);
+    }
+    for (size_t i = 0; i < n; i++) {
+        for (int a = 0; a < 3; a++)
+            far[i][a] = near[i][a] + origin[a];
+        far[i][3] = near[i][3];
+        for (int a = 0; a < 3; a++) /* what the records get: rounded once more */
+            near[i][a] = far[i][a] - origin[a];
+    }
+    struct bvh b;
+    CHECK(sphere_bvh_build((const double (*)[4])far, n, &b) == 0);
+    bvh_move(&b, origin);
+    check_structure("moved", (const double (*)[4])near, n, &b);
+    bvh_free(&b);
+    free(near);
+    free(far);
+}
+
 int main(void)
 {
     static const struct set_case cases[] = {
@@ -890,6 +918,7 @@ int main(void)
     };
     check_edges();
     check_build_from();
+    check_moved();
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i], 1000 + i);
     check_quality();

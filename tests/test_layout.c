@@ -318,7 +318,7 @@ struct buffer {
      KIND_OF(((struct T *)0)->f)},
 
 /* Field lists, in declaration order, of gpu_layout_types.h. */
-#define FRAME_FIELDS(F, T) F(T, eye) F(T, u) F(T, v) F(T, w) F(T, origin) F(T, ambient) \
+#define FRAME_FIELDS(F, T) F(T, eye) F(T, u) F(T, v) F(T, w) F(T, ambient) \
     F(T, background) F(T, fog) F(T, lens) F(T, area) F(T, limits) F(T, counts)           \
     F(T, geometry) F(T, sampling)
 #define WALK_FIELDS(F, T) F(T, where) F(T, color) F(T, signature)
