@@ -314,23 +314,24 @@ static int classify_objects(const struct scene *s, struct layout *lay,
  * at their distance). */
 static void place_origin(const struct scene *s, struct layout *lay)
 {
+    lay->moved = false;
+    memcpy(lay->eye, s->eye, sizeof lay->eye);
+    if (lay->bvh.node_count == 0)
+        return; /* only unbounded objects: nothing says where the scene is */
     double span[6]; /* the eye's point and the BVH's root box */
-    bool boxed = lay->bvh.node_count > 0;
     for (int a = 0; a < 3; a++) {
-        span[a] = boxed ? fmin(s->eye[a], lay->bvh.nodes[0].lo[a]) : s->eye[a];
-        span[a + 3] = boxed ? fmax(s->eye[a], lay->bvh.nodes[0].hi[a]) : s->eye[a];
+        span[a] = fmin(s->eye[a], lay->bvh.nodes[0].lo[a]);
+        span[a + 3] = fmax(s->eye[a], lay->bvh.nodes[0].hi[a]);
     }
     double width = 0;
     for (int a = 0; a < 3; a++)
         width = fmax(width, span[a + 3] - span[a]);
-    double step = width > 0 ? exp2(ceil(log2(width))) : 0;
-    lay->moved = false;
+    if (!(width > 0))
+        return;
+    double step = exp2(ceil(log2(width)));
     for (int a = 0; a < 3; a++) {
         double mid = (span[a] + span[a + 3]) / 2;
-        double at = 0;
-        if (fabs(mid) > width)
-            at = step > 0 ? round(mid / step) * step : mid;
-        lay->origin[a] = (float)at;
+        lay->origin[a] = fabs(mid) > width ? (float)(round(mid / step) * step) : 0.0f;
         lay->eye[a] = s->eye[a] - lay->origin[a];
         lay->moved |= lay->origin[a] != 0;
     }
