@@ -456,6 +456,23 @@ def case_scene_read_in_place(c):
         c.expect(len(set(images[0])) > 20, f"{precision}: flat image")
 
 
+def case_bvh_nodes_beside(c):
+    """A tree of 2^14 nodes or more is packed on a thread beside the
+    objects under --precision float (scene_pack.c): its image is the one
+    the plain loop over every object gives (--bvh-min above the count),
+    which has no tree at all."""
+    scene = scene_file(c.tmp, "grid.txt", grid_of_spheres(180))  # 32,400 spheres
+    images = []
+    for bvh_min in ("16", "100000"):
+        out = os.path.join(c.tmp, f"grid-{bvh_min}.ppm")
+        status, _, err = run(c.tp2, ["--quiet", "--precision", "float", "--bvh-min", bvh_min,
+                                     scene, out, "64", "48"])
+        c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        images.append(read_ppm(out)[2])
+    c.expect(images[0] == images[1], "the tree's image differs from the plain loop's")
+    c.expect(len(set(images[0])) > 20, "flat image")
+
+
 def case_retrace_pipeline_eager(c):
     """Auto's retrace pipeline made at the start, beside the band pass's
     and the first bands' float passes (on a second thread: the validation
