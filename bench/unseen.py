@@ -2,7 +2,8 @@
 """unseen.py - the accuracy bar on random scenes nobody tuned the marks on.
 
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
-                            [--seeds 1-80] [--size 200 150] [--keep DIR]
+                            [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
+                            [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
 every bounded kind, the quadric and a floor plane; mirrors and glass of
@@ -16,7 +17,15 @@ both as PFM, then asks tp2-imgcmp whether the default image meets
 README.TXT's accuracy bar (at least 99.95% of channel values within one
 level, at most 10 pixels off by more than 8 levels). Prints one line per
 seed and a summary; exits 1 if any seed misses the bar. Slow (a minute
-or more per seed on lavapipe for the glass ones): not a CI test."""
+or more per seed on lavapipe for the glass ones): not a CI test.
+
+--extras adds, from a random stream of its own (so that the scenes
+without it stay as they were), what those scenes lack: gradient and
+texture-mapped pigments (a 16 x 16 PPM of hard-edged blocks written
+beside the scenes) on some objects, fog, several samples per pixel, a
+thin lens, and an area light, each in some of the scenes. --reuse-exact
+keeps the exact images a run with --keep left in that folder (the slow
+part), to check another build against them."""
 import argparse
 import math
 import os
@@ -29,8 +38,22 @@ MIN_WITHIN1 = "0.9995"
 MAX_BAD8 = "10"
 
 
-def make_scene(seed):
-    """Scene text for seed (deterministic)."""
+TEXTURE = "unseen-texture.ppm"
+
+
+def write_texture(folder):
+    """A 16 x 16 PPM of 4 x 4 blocks of saturated colors: texels that
+    differ by most of the range next to each other."""
+    rng = random.Random(16)
+    blocks = [[bytes(rng.choice([0, 255]) for _ in range(3)) for _ in range(4)]
+              for _ in range(4)]
+    rows = b"".join(blocks[y // 4][x // 4] for y in range(16) for x in range(16))
+    with open(os.path.join(folder, TEXTURE), "wb") as f:
+        f.write(b"P6\n16 16\n255\n" + rows)
+
+
+def make_scene(seed, extras=False):
+    """Scene text for seed (deterministic); extras: see --extras."""
     r = random.Random(seed)
     scale = r.choice([1, 1, 1, 1e-3, 1e2, 1e4])
     off = [r.choice([0, 0, r.uniform(-1, 1) * 1e4 * scale]) for _ in range(3)]
@@ -116,9 +139,49 @@ def make_scene(seed):
             add("\n".join(faces))
     if r.random() < 0.8:
         add(f"plane 0 1 0 {1.5 * scale - off[1]:.9g}")
+    directives = []
+    if extras:
+        directives = add_extras(random.Random(seed + 10 ** 6), scale, off, dist, nl,
+                                pigments, objects)
     return "\n".join(head + lights + ["", str(len(pigments))] + pigments +
                      ["", str(len(finishes))] + finishes +
-                     ["", str(len(objects))] + objects) + "\n"
+                     ["", str(len(objects))] + objects + directives) + "\n"
+
+
+def add_extras(r, scale, off, dist, nlights, pigments, objects):
+    """--extras: new pigments given to some objects (pigments and objects
+    are changed in place); returns the trailing directives."""
+    def p(x, y, z):
+        return f"{x * scale + off[0]:.9g} {y * scale + off[1]:.9g} {z * scale + off[2]:.9g}"
+
+    def rgb():
+        return " ".join(f"{r.random():.3f}" for _ in range(3))
+
+    new = []
+    if r.random() < 0.6:
+        new.append(f"gradient {p(*(r.uniform(-4, 4) for _ in range(3)))}  "
+                   f"{p(*(r.uniform(-4, 4) for _ in range(3)))}  {rgb()}  {rgb()}")
+    if r.random() < 0.6:  # s along x, t along z, a cell of the image per 0.25-2 units
+        k = 1 / (r.choice([1, 4, 8]) * scale)
+        new.append(f"texmap {TEXTURE}  {k:.9g} 0 0 {-off[0] * k:.9g}  "
+                   f"0 0 {k:.9g} {-off[2] * k:.9g}")
+    for text in new:
+        pigments.append(text)
+        for i in r.sample(range(len(objects)), max(1, len(objects) // 3)):
+            objects[i] = f"{len(pigments) - 1} " + objects[i].split(" ", 1)[1]
+    directives = []
+    samples = r.choice([1, 1, 2, 4])
+    if r.random() < 0.2:  # a thin lens focused near the scene's middle
+        samples = 4
+        directives.append(f"lens {r.uniform(0.02, 0.1) * scale:.9g} {dist * scale:.9g}")
+    if r.random() < 0.3:
+        directives.append(f"arealight {r.randint(1, nlights)} {r.uniform(0.2, 1) * scale:.9g} "
+                          f"{r.choice([4, 9])}")
+    if r.random() < 0.3:  # 0.2 to 2 of a ray's color lost on the way to the scene
+        directives.append(f"fog {rgb()} {-math.log(r.uniform(0.135, 0.82)) / (dist * scale):.9g}")
+    if samples > 1:
+        directives.append(f"samples {samples}")
+    return [""] + directives if directives else []
 
 
 def render(tp2, scene, out, size, options):
@@ -140,18 +203,25 @@ def main():
     ap.add_argument("--seeds", default="1-80")
     ap.add_argument("--size", nargs=2, default=["200", "150"])
     ap.add_argument("--keep", help="folder to keep the scenes and images in")
+    ap.add_argument("--reuse-exact", action="store_true",
+                    help="keep exact images already in --keep's folder (same seeds and size)")
+    ap.add_argument("--extras", action="store_true",
+                    help="textures, gradients, fog, samples, lens and area lights too")
     args = ap.parse_args()
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
     os.makedirs(folder, exist_ok=True)
+    if args.extras:
+        write_texture(folder)
     missed = []
     seeds = seeds_of(args.seeds)
     for seed in seeds:
         scene = os.path.join(folder, f"s{seed}.txt")
         with open(scene, "w") as f:
-            f.write(make_scene(seed))
+            f.write(make_scene(seed, args.extras))
         auto, exact = (os.path.join(folder, f"{k}{seed}.pfm") for k in ("auto", "exact"))
         render(args.tp2, scene, auto, args.size, [])
-        render(args.tp2, scene, exact, args.size, ["--precision", "double", "--bailout", "0"])
+        if not (args.reuse_exact and os.path.exists(exact)):
+            render(args.tp2, scene, exact, args.size, ["--precision", "double", "--bailout", "0"])
         r = subprocess.run([args.imgcmp, "--min-within1", MIN_WITHIN1, "--max-bad8", MAX_BAD8,
                             auto, exact], capture_output=True, text=True)
         print(f"seed {seed}: {r.stdout.strip()}{'' if r.returncode == 0 else '  MISSED'}",

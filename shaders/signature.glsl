@@ -145,9 +145,13 @@ bool at_stake(float stake)
 }
 
 // Marks sig SENSITIVE where boundaries seen here may move by `pixels`.
+// With SAMPLES rays per pixel (stratified, or spread by a lens) a boundary
+// passes near SAMPLES times as many rays, so it counts from a SAMPLES-th
+// of frame.limits.y (a flip of one of them weighs a SAMPLES-th, which
+// `stake` says).
 void seen(inout uint sig, float pixels, float stake)
 {
-    if (at_stake(stake) && pixels >= frame.limits.y)
+    if (at_stake(stake) && pixels * float(SAMPLES) >= frame.limits.y)
         sig |= SENSITIVE;
 }
 
