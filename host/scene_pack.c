@@ -406,7 +406,7 @@ struct side_job {
     struct packed_scene *into;
     int rc;
     pthread_t thread;
-    bool started, threaded;
+    bool threaded; /* rc and threaded stay 0 for a job never started */
 };
 
 static void *pack_twin(void *arg)
@@ -425,7 +425,6 @@ static void *pack_nodes(void *arg)
 
 static void side_start(struct side_job *job, void *(*fn)(void *))
 {
-    job->started = true;
     job->threaded = pthread_create(&job->thread, NULL, fn, job) == 0;
     if (!job->threaded)
         fn(job);
@@ -434,8 +433,6 @@ static void side_start(struct side_job *job, void *(*fn)(void *))
 /* The job's result; 0 if it was never started. */
 static int side_join(struct side_job *job)
 {
-    if (!job->started)
-        return 0;
     if (job->threaded)
         pthread_join(job->thread, NULL);
     return job->rc;

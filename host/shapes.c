@@ -132,8 +132,7 @@ static void box_empty(double lo[3], double hi[3])
 /* Point v (xyz) with origin at 0. */
 static void move_point(double v[4], const double origin[3])
 {
-    for (int a = 0; a < 3; a++)
-        v[a] -= origin[a];
+    vec3_sub(v, origin, v);
 }
 
 /* Plane v (unit normal, d: n.x + d = 0) with origin at 0. */
