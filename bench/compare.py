@@ -32,15 +32,22 @@ sys.path.insert(0, HERE)
 import bench  # noqa: E402  (default scene list, environment)
 
 
-def run(tp2, scene, out, w, h, env, options=()):
-    """(wall seconds, render seconds, ok) of one tp2 --stats run."""
+def run_phases(tp2, scene, out, w, h, env, options=()):
+    """(wall seconds, {phase: seconds} as --stats reports them, ok, stderr)
+    of one tp2 --stats run."""
     t0 = time.perf_counter()
     r = subprocess.run([tp2, "--stats", "--quiet", *options, scene, out, str(w), str(h)],
                        capture_output=True, env=env)
     wall = time.perf_counter() - t0
     err = r.stderr.decode("utf-8", "replace")
-    m = re.search(r"tp2: render +([0-9.]+) s", err)
-    return wall, float(m[1]) if m else float("nan"), r.returncode == 0 and "warning" not in err
+    phases = {m[1]: float(m[2]) for m in re.finditer(r"tp2: (\w+) +([0-9.]+) s", err)}
+    return wall, phases, r.returncode == 0 and "warning" not in err, err
+
+
+def run(tp2, scene, out, w, h, env, options=()):
+    """(wall seconds, render seconds, ok) of one tp2 --stats run."""
+    wall, phases, ok, _ = run_phases(tp2, scene, out, w, h, env, options)
+    return wall, phases.get("render", float("nan")), ok
 
 
 def main():

@@ -8,14 +8,16 @@ every other round), after one untimed round, RUNS times each, and prints
 per build the median of the process's wall time and of each phase
 --stats reports (parse, device, bvh, upload, pipeline, render, retrace,
 readback, write). For the host-side phases of large scenes, where
-bench/compare.py gives wall and render only. VK_ICD_FILENAMES is set to
-lavapipe when unset. Standard library only."""
+bench/compare.py gives wall and render only (its run_phases does each
+run). VK_ICD_FILENAMES is set to lavapipe when unset. Standard library
+only."""
 import os
-import re
 import statistics
-import subprocess
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench  # noqa: E402  (environment)
+import compare  # noqa: E402  (one timed --stats run)
 
 
 def main():
@@ -23,24 +25,19 @@ def main():
         sys.exit(__doc__)
     builds = sys.argv[1].split(',')
     scene, runs, extra = sys.argv[2], int(sys.argv[3]), sys.argv[4:]
-    env = dict(os.environ)
-    env.setdefault('VK_ICD_FILENAMES', '/usr/share/vulkan/icd.d/lvp_icd.x86_64.json')
+    env = bench.tp2_env(True)
     out = '/tmp/tp2-phases-%d.ppm' % os.getpid()
     res = {b: {} for b in builds}
     for i in range(runs + 1):
         for b in (builds if i % 2 else builds[::-1]):
-            t0 = time.perf_counter()
-            r = subprocess.run([b, '--stats', '--quiet', *extra, scene, out, '400', '300'],
-                               capture_output=True, text=True, env=env)
-            wall = time.perf_counter() - t0
-            if r.returncode != 0:
-                sys.exit('%s failed: %s' % (b, r.stderr.strip()))
+            wall, phases, ok, err = compare.run_phases(b, scene, out, 400, 300, env, extra)
+            if not ok:
+                sys.exit('%s failed: %s' % (b, err.strip()))
             if i == 0:
                 continue
-            d = res[b]
-            d.setdefault('wall', []).append(wall)
-            for m in re.finditer(r'tp2: (\w+) +([0-9.]+) s', r.stderr):
-                d.setdefault(m[1], []).append(float(m[2]))
+            res[b].setdefault('wall', []).append(wall)
+            for k, v in phases.items():
+                res[b].setdefault(k, []).append(v)
     if os.path.exists(out):
         os.remove(out)
     for b in builds:
