@@ -19,6 +19,7 @@
 #include "retrace.h"
 #include "scene_pack.h"
 #include "spirv_fused.h"
+#include "spirv_specialize.h"
 #include "tp2_shared.h"
 #include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
@@ -81,7 +82,9 @@ static double eager_retrace_samples(void)
  * retrace pass, under auto only, traces the listed pixels in double. */
 struct tracer {
     bool use_double, signatures, pixel_list;
-    VkShaderModule shader;
+    const uint32_t *code; /* its SPIR-V: a build of CMakeLists.txt's, or fused */
+    size_t words;
+    uint32_t *fused; /* owned: under TP2_FUSED, the rewritten code */
     VkPipeline pipelines[TP2_WALK_KINDS]; /* by TP2_WALK_*, made when needed */
     VkDescriptorSet set;
     VkBufferView views[TP2_BINDING_COUNT]; /* its texel buffers' */
@@ -427,9 +430,8 @@ static int create_layouts(struct renderer *r)
     return 0;
 }
 
-/* Each pass's shader module, of its precision and the kinds the scene
- * needs. */
-static int create_modules(struct renderer *r)
+/* Each pass's SPIR-V, of its precision and the kinds the scene needs. */
+static int choose_code(struct renderer *r)
 {
     enum kind_tier tier = kind_tier(&r->features);
     struct tracer *passes[2];
@@ -440,30 +442,43 @@ static int create_modules(struct renderer *r)
     }
     for (int k = 0, n = tracers(r, passes); k < n; k++) {
         struct tracer *t = passes[k];
-        const uint32_t *code = builds[t->use_double][tier].code;
-        size_t words = builds[t->use_double][tier].size / sizeof *code;
+        t->code = builds[t->use_double][tier].code;
+        t->words = builds[t->use_double][tier].size / sizeof *t->code;
+        if (!fused)
+            continue;
         size_t sites = 0;
-        uint32_t *rewritten = fused ? spirv_fused(code, words, &words, &sites) : NULL;
-        if (fused && !rewritten) {
+        t->fused = spirv_fused(t->code, t->words, &t->words, &sites);
+        if (!t->fused) {
             fprintf(stderr, "tp2: out of memory rewriting the shader for TP2_FUSED\n");
             return -1;
         }
-        if (fused)
-            fprintf(stderr, "tp2: TP2_FUSED: %zu operations of the %s shader fused\n", sites,
-                    t->use_double ? "double" : "float");
-        VkShaderModuleCreateInfo module_info = {
-            .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-            .codeSize = words * sizeof *code,
-            .pCode = rewritten ? rewritten : code,
-        };
-        VkResult made = vkCreateShaderModule(r->vk.device, &module_info, NULL, &t->shader);
-        free(rewritten);
-        if (made != VK_SUCCESS) {
-            vk_report("vkCreateShaderModule", made, __FILE__, __LINE__);
-            return -1;
-        }
+        t->code = t->fused;
+        fprintf(stderr, "tp2: TP2_FUSED: %zu operations of the %s shader fused\n", sites,
+                t->use_double ? "double" : "float");
     }
     return 0;
+}
+
+/* Pass t's shader module for a pipeline with the specialization constants
+ * `values`: its code without what they rule out (spirv_specialize.h; a
+ * pipeline made 1.5-3 times faster on lavapipe, README "Performance"),
+ * or as it is where that fails or TP2_SPECIALIZE=0 (to compare). */
+static VkResult create_module(const struct renderer *r, const struct tracer *t,
+                              const int32_t values[TP2_SPEC_COUNT], VkShaderModule *module)
+{
+    size_t words = t->words, removed = 0;
+    uint32_t *specialized = env_is("TP2_SPECIALIZE", "0")
+                                ? NULL
+                                : spirv_specialize(t->code, t->words, values, TP2_SPEC_COUNT,
+                                                   &words, &removed);
+    VkShaderModuleCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = (specialized ? words : t->words) * sizeof *t->code,
+        .pCode = specialized ? specialized : t->code,
+    };
+    VkResult made = vkCreateShaderModule(r->vk.device, &info, NULL, module);
+    free(specialized);
+    return made;
 }
 
 /* A compute pipeline of module's main with the given constants. */
@@ -496,13 +511,21 @@ static int make_pipeline(struct renderer *r, struct tracer *t, int walk)
         .dataSize = sizeof values,
         .pData = values,
     };
-    VkComputePipelineCreateInfo info = pipeline_info(r, t->shader, &spec);
-    VkPipelineCache cache = VK_NULL_HANDLE;
-    if (pipeline_cache_load(&r->vk, &cache) != 0)
+    VkShaderModule module = VK_NULL_HANDLE;
+    VkResult made = create_module(r, t, values, &module);
+    if (made != VK_SUCCESS) {
+        vk_report("vkCreateShaderModule", made, __FILE__, __LINE__);
         return -1;
-    VkResult made = vkCreateComputePipelines(r->vk.device, cache, 1, &info, NULL,
-                                             &t->pipelines[walk]);
+    }
+    VkComputePipelineCreateInfo info = pipeline_info(r, module, &spec);
+    VkPipelineCache cache = VK_NULL_HANDLE;
+    if (pipeline_cache_load(&r->vk, &cache) != 0) {
+        vkDestroyShaderModule(r->vk.device, module, NULL);
+        return -1;
+    }
+    made = vkCreateComputePipelines(r->vk.device, cache, 1, &info, NULL, &t->pipelines[walk]);
     pipeline_cache_save(&r->vk, cache);
+    vkDestroyShaderModule(r->vk.device, module, NULL); /* the pipeline keeps what it needs */
     if (made != VK_SUCCESS) {
         t->pipelines[walk] = VK_NULL_HANDLE;
         vk_report("vkCreateComputePipelines", made, __FILE__, __LINE__);
@@ -973,7 +996,7 @@ static int run_bands(struct renderer *r, int width, int height, int samples,
     return rc;
 }
 
-/* The passes' pipelines and shader modules, destroyed (make_passes undone,
+/* The passes' pipelines (and fused code), destroyed (make_passes undone,
  * to plan again or at the end). */
 static void unmake_passes(struct renderer *r)
 {
@@ -984,8 +1007,8 @@ static void unmake_passes(struct renderer *r)
             vkDestroyPipeline(r->vk.device, passes[p]->pipelines[k], NULL);
             passes[p]->pipelines[k] = VK_NULL_HANDLE;
         }
-        vkDestroyShaderModule(r->vk.device, passes[p]->shader, NULL);
-        passes[p]->shader = VK_NULL_HANDLE;
+        free(passes[p]->fused);
+        passes[p]->fused = NULL;
     }
 }
 
@@ -1134,14 +1157,14 @@ static void plan_passes(struct renderer *r, const struct render_options *opt,
                                            eager_retrace_samples();
 }
 
-/* The passes' shader modules and the band pass's pipeline. The retrace
+/* The passes' code and the band pass's pipeline. The retrace
  * pass's pipelines, like the walks', are made when first needed (a scene
  * where no pixel needs double never makes them), but for a large image
  * (eager_retrace) its first one is made now, on a thread of its own
  * (side_job). */
 static int make_passes(struct renderer *r)
 {
-    if (create_modules(r) != 0)
+    if (choose_code(r) != 0)
         return -1;
     if (r->eager_retrace)
         side_job(r, &r->retrace_making, retrace_job);

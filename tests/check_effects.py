@@ -906,6 +906,43 @@ def case_auto_same_when_fused(c):
     c.expect(float_flips > 0, "fusing changed no float decision: the check would prove nothing")
 
 
+def case_specialized_same_image(c):
+    """Each pipeline's shader has the code its specialization constants
+    rule out taken away before lavapipe sees it (host/spirv_specialize.h):
+    the image is the same bytes as from the whole module
+    (TP2_SPECIALIZE=0), under auto (float pass and double retrace), float
+    and double, on every tier of kinds (spheres and planes; meshes; the
+    curved kinds), with pigments, textures, fog, lens, arealights and
+    samples, and with walks that go on across passes (one ray a pass);
+    the validation layer sees every specialized module."""
+    def path(name):
+        return os.path.join(HERE, "..", "scenes", name + ".txt")
+    effects = scene_file(c.tmp, "effects.txt", effects_scene())
+    tir = os.path.join(HERE, "stress", "tir-chain.txt")
+    one_ray = {"TP2_PASS_RAYS": "1"}
+    runs = [(path("demo"), "auto", {}), (path("demo"), "float", {}),
+            (path("mesh"), "auto", {}), (path("mesh"), "double", {}),
+            (path("torus"), "auto", {}), (path("torus"), "auto", one_ray),
+            (path("texmap"), "float", {}), (path("checker"), "auto", {}),
+            (effects, "auto", {}), (effects, "double", one_ray), (tir, "auto", {})]
+    retraced = 0
+    for scene, precision, env in runs:
+        images = []
+        for specialize in ("1", "0"):
+            out = os.path.join(c.tmp, f"s{specialize}.ppm")
+            status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", precision,
+                                         scene, out, "40", "30"],
+                                 dict(env, TP2_SPECIALIZE=specialize))
+            c.require(status == 0 and "validation" not in err,
+                      f"{scene} {precision} {env}: exit {status}: {err!r}")
+            found = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+            retraced += int(found.group(1)) if found else 0
+            images.append(read_ppm(out)[2])
+        c.expect(images[0] == images[1],
+                 f"{os.path.basename(scene)} {precision} {env}: specializing changed the image")
+    c.require(retraced > 0, "no pixel traced again: the double retrace went untested")
+
+
 def case_stats(c):
     """--stats names every phase and counts W x H x spp camera rays under
     --precision float; under auto also the row after each band but the
