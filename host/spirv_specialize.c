@@ -444,6 +444,30 @@ static size_t growth(const struct module *m, const struct function *fn)
     return words;
 }
 
+/* Values the output adds to the module's globals, with new ids from
+ * next_id: an OpUndef per type that needs one (undef_of, by type) and
+ * the constants true and false (bool: the module's boolean type). */
+struct added {
+    uint32_t next_id;
+    uint32_t *undef_of;
+    uint32_t bool_type, true_id, false_id;
+};
+
+static uint32_t undef(struct added *a, uint32_t type)
+{
+    if (!a->undef_of[type])
+        a->undef_of[type] = a->next_id++;
+    return a->undef_of[type];
+}
+
+static uint32_t constant(struct added *a, bool value)
+{
+    uint32_t *id = value ? &a->true_id : &a->false_id;
+    if (!*id)
+        *id = a->next_id++;
+    return *id;
+}
+
 static uint32_t *put(uint32_t *out, const uint32_t *c, size_t at)
 {
     memcpy(out, c + at, count_of(c, at) * sizeof *c);
@@ -457,8 +481,7 @@ static uint32_t *put(uint32_t *out, const uint32_t *c, size_t at)
  * Marks the ids that stay defined in `defined`; an OpUndef of type T is
  * undef_of[T]. */
 static uint32_t *write_function(const struct module *m, const struct function *fn,
-                                uint32_t *out, bool *defined, uint32_t *undef_of,
-                                uint32_t *next_id)
+                                uint32_t *out, bool *defined, struct added *added)
 {
     const uint32_t *c = m->code;
     for (size_t at = fn->start; at < m->blocks[fn->first].start; at += count_of(c, at)) {
@@ -483,6 +506,17 @@ static uint32_t *write_function(const struct module *m, const struct function *f
             uint32_t id = result_id(c, at);
             if (id < m->bound)
                 defined[id] = true;
+            uint32_t cond = op_of(c, at) == SpvOpBranchConditional ? c[at + 1] : 0, v = 0;
+            if (cond && added->bool_type && state_of(m, cond, &v) == CONSTANT) {
+                /* A condition known here, made a literal constant: lavapipe
+                 * then drops the arm not taken before it makes any code
+                 * (an OpUnreachable left behind a condition it cannot
+                 * fold costs a mask in every loop around it). */
+                uint32_t *branch = out;
+                out = put(out, c, at);
+                branch[1] = constant(added, v != 0);
+                continue;
+            }
             if (op_of(c, at) != SpvOpPhi) {
                 out = put(out, c, at);
                 continue;
@@ -502,10 +536,7 @@ static uint32_t *write_function(const struct module *m, const struct function *f
             for (size_t e = fn->first; e < fn->first + fn->count; e++) {
                 if (m->blocks[e].runs || m->blocks[e].branch_to != b->label)
                     continue;
-                uint32_t type = c[at + 1];
-                if (!undef_of[type])
-                    undef_of[type] = (*next_id)++;
-                *out++ = undef_of[type];
+                *out++ = undef(added, c[at + 1]);
                 *out++ = m->blocks[e].label;
             }
             head[0] = (uint32_t)(out - head) << 16 | SpvOpPhi;
@@ -595,17 +626,20 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
                 more |= note_calls(&m, &functions[k], functions, function_of);
     }
     /* The output is longer than the input by at most the OpUndefs (3
-     * words, one per type) and what writing the functions adds. */
+     * words, one per type), the two constants and what writing the
+     * functions adds. */
     size_t extra = 0;
     for (size_t k = 0; k < function_count; k++)
         extra += functions[k].called ? growth(&m, &functions[k]) : 0;
-    out = malloc((words + 3 * b + extra) * sizeof *out);
+    out = malloc((words + 3 * b + 6 + extra) * sizeof *out);
     funcs_out = malloc((words + extra) * sizeof *funcs_out);
     if (!out || !funcs_out)
         goto done;
     /* The functions that stay, written first to learn what stays defined
      * and which OpUndefs are needed; then the globals, filtered, before them. */
-    uint32_t next_id = m.bound;
+    struct added added = {.next_id = m.bound, .undef_of = undef_of};
+    for (uint32_t id = 0; id < b && !added.bool_type; id++)
+        added.bool_type = m.scalar[id] == 1 ? id : 0;
     uint32_t *f = funcs_out;
     for (size_t at = HEADER_WORDS; at < globals_end; at += count_of(code, at)) {
         uint32_t id = result_id(code, at);
@@ -614,7 +648,7 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
     }
     for (size_t k = 0; k < function_count; k++)
         if (functions[k].called)
-            f = write_function(&m, &functions[k], f, defined, undef_of, &next_id);
+            f = write_function(&m, &functions[k], f, defined, &added);
     uint32_t *w = out;
     memcpy(w, code, HEADER_WORDS * sizeof *code);
     w += HEADER_WORDS;
@@ -627,9 +661,15 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
             *w++ = type;
             *w++ = undef_of[type];
         }
+    for (int k = 0; k < 2; k++)
+        if (k ? added.true_id : added.false_id) {
+            *w++ = 3u << 16 | (k ? SpvOpConstantTrue : SpvOpConstantFalse);
+            *w++ = added.bool_type;
+            *w++ = k ? added.true_id : added.false_id;
+        }
     memcpy(w, funcs_out, (size_t)(f - funcs_out) * sizeof *f);
     w += f - funcs_out;
-    out[3] = next_id;
+    out[3] = added.next_id;
     *out_words = (size_t)(w - out);
     *removed = words > *out_words ? words - *out_words : 0;
     result = out;
