@@ -466,11 +466,11 @@ static int choose_code(struct renderer *r)
 static VkResult create_module(const struct renderer *r, const struct tracer *t,
                               const int32_t values[TP2_SPEC_COUNT], VkShaderModule *module)
 {
-    size_t words = t->words, removed = 0;
+    size_t words = t->words;
     uint32_t *specialized = env_is("TP2_SPECIALIZE", "0")
                                 ? NULL
                                 : spirv_specialize(t->code, t->words, values, TP2_SPEC_COUNT,
-                                                   &words, &removed);
+                                                   &words);
     VkShaderModuleCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
         .codeSize = (specialized ? words : t->words) * sizeof *t->code,

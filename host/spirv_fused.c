@@ -4,8 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "spirv_words.h"
+
 enum {
-    HEADER_WORDS = 5,
     OP_CAPABILITY = 17,
     OP_TYPE_FLOAT = 22,
     OP_TYPE_VECTOR = 23,
@@ -53,25 +54,11 @@ static bool typed_result(uint32_t op)
     return false;
 }
 
-static bool well_formed(const uint32_t *code, size_t words)
-{
-    if (words < HEADER_WORDS || code[0] != 0x07230203u || code[3] == 0 ||
-        code[3] > (1u << 22))
-        return false;
-    for (size_t at = HEADER_WORDS; at < words;) {
-        uint32_t count = code[at] >> 16;
-        if (count == 0 || count > words - at)
-            return false;
-        at += count;
-    }
-    return true;
-}
-
 /* Reads types, the type of each value, and each product's factors. */
 static void scan(struct module *m)
 {
     const uint32_t *c = m->code;
-    for (size_t at = HEADER_WORDS; at < m->words; at += c[at] >> 16) {
+    for (size_t at = SPIRV_HEADER_WORDS; at < m->words; at += c[at] >> 16) {
         uint32_t count = c[at] >> 16, op = c[at] & 0xffffu;
         if (op == OP_CAPABILITY && count == 2 && c[at + 1] == CAPABILITY_FLOAT64)
             m->has_float64 = true;
@@ -157,12 +144,12 @@ static bool rewrite(struct module *m, const uint32_t *c, uint32_t **out, uint32_
 
 uint32_t *spirv_fused(const uint32_t *code, size_t words, size_t *out_words, size_t *sites)
 {
-    if (!well_formed(code, words))
+    if (!spirv_well_formed(code, words))
         return NULL;
     struct module m = {code, words, code[3], calloc(code[3], sizeof(struct id_info)), {0},
                        false};
     size_t candidates = 0;
-    for (size_t at = HEADER_WORDS; at < words; at += code[at] >> 16) {
+    for (size_t at = SPIRV_HEADER_WORDS; at < words; at += code[at] >> 16) {
         uint32_t op = code[at] & 0xffffu;
         candidates += op == OP_FADD || op == OP_FSUB || op == OP_DOT;
     }
@@ -175,13 +162,13 @@ uint32_t *spirv_fused(const uint32_t *code, size_t words, size_t *out_words, siz
     scan(&m);
     uint32_t next = m.bound;
     uint32_t *o = out;
-    memcpy(o, code, HEADER_WORDS * sizeof *o);
-    o += HEADER_WORDS;
+    memcpy(o, code, SPIRV_HEADER_WORDS * sizeof *o);
+    o += SPIRV_HEADER_WORDS;
     if (!m.has_float64)
         o = emit(o, OP_CAPABILITY, 1, (uint32_t[]){CAPABILITY_FLOAT64});
     bool typed = false;
     *sites = 0;
-    for (size_t at = HEADER_WORDS; at < words; at += code[at] >> 16) {
+    for (size_t at = SPIRV_HEADER_WORDS; at < words; at += code[at] >> 16) {
         uint32_t count = code[at] >> 16, op = code[at] & 0xffffu;
         if (op == OP_FUNCTION && !typed) { /* the double types, before any code */
             typed = true;

@@ -4,14 +4,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "spirv_words.h"
+
 #define SPV_ENABLE_UTILITY_CODE
 #include <spirv/unified1/spirv.h>
 
 /* The header's helper is an inline definition; this declaration makes
  * this file provide it (C11 6.7.4), whether or not calls are inlined. */
 extern void SpvHasResultAndType(SpvOp opcode, bool *hasResult, bool *hasResultType);
-
-enum { HEADER_WORDS = 5, MAX_BOUND = 1u << 22 };
 
 /* A value's place in the lattice: not yet known to run (UNKNOWN), one
  * constant (CONSTANT), or anything (VARYING). It only ever moves down. */
@@ -42,38 +42,32 @@ struct module {
     size_t block_count;
 };
 
-static uint32_t count_of(const uint32_t *c, size_t at) { return c[at] >> 16; }
-static uint32_t op_of(const uint32_t *c, size_t at) { return c[at] & 0xffffu; }
-
 /* The result id of the instruction at `at`, or 0. */
 static uint32_t result_id(const uint32_t *c, size_t at)
 {
     bool has_result = false, has_type = false;
-    SpvHasResultAndType((SpvOp)op_of(c, at), &has_result, &has_type);
+    SpvHasResultAndType((SpvOp)spirv_op(c, at), &has_result, &has_type);
     uint32_t word = has_type ? 2 : 1;
-    return has_result && count_of(c, at) > word ? c[at + word] : 0;
+    return has_result && spirv_count(c, at) > word ? c[at + word] : 0;
 }
 
 /* The result type of the instruction at `at`, or 0. */
 static uint32_t result_type(const uint32_t *c, size_t at)
 {
     bool has_result = false, has_type = false;
-    SpvHasResultAndType((SpvOp)op_of(c, at), &has_result, &has_type);
-    return has_type && count_of(c, at) > 2 ? c[at + 1] : 0;
+    SpvHasResultAndType((SpvOp)spirv_op(c, at), &has_result, &has_type);
+    return has_type && spirv_count(c, at) > 2 ? c[at + 1] : 0;
 }
 
+/* A module spirv_well_formed, whose result ids and types are all below
+ * its bound (the arrays by id are that long). */
 static bool well_formed(const uint32_t *code, size_t words)
 {
-    if (words < HEADER_WORDS || code[0] != SpvMagicNumber || code[3] == 0 ||
-        code[3] > MAX_BOUND)
+    if (!spirv_well_formed(code, words))
         return false;
-    for (size_t at = HEADER_WORDS; at < words;) {
-        uint32_t n = count_of(code, at);
-        if (n == 0 || n > words - at || result_id(code, at) >= code[3] ||
-            (n >= 2 && result_type(code, at) >= code[3]))
+    for (size_t at = SPIRV_HEADER_WORDS; at < words; at += spirv_count(code, at))
+        if (result_id(code, at) >= code[3] || result_type(code, at) >= code[3])
             return false;
-        at += n;
-    }
     return true;
 }
 
@@ -177,13 +171,13 @@ static enum state apply(const struct module *m, uint32_t op, const uint32_t *w, 
 static void read_globals(struct module *m, const int32_t *values, size_t count)
 {
     const uint32_t *c = m->code;
-    for (size_t at = HEADER_WORDS; at < m->words; at += count_of(c, at)) {
-        uint32_t op = op_of(c, at), n = count_of(c, at);
+    for (size_t at = SPIRV_HEADER_WORDS; at < m->words; at += spirv_count(c, at)) {
+        uint32_t op = spirv_op(c, at), n = spirv_count(c, at);
         if (op == SpvOpDecorate && n >= 4 && c[at + 2] == SpvDecorationSpecId && c[at + 1] < m->bound)
             m->spec_id[c[at + 1]] = c[at + 3];
     }
-    for (size_t at = HEADER_WORDS; at < m->words; at += count_of(c, at)) {
-        uint32_t op = op_of(c, at), n = count_of(c, at);
+    for (size_t at = SPIRV_HEADER_WORDS; at < m->words; at += spirv_count(c, at)) {
+        uint32_t op = spirv_op(c, at), n = spirv_count(c, at);
         if (op == SpvOpFunction)
             break;
         if (op == SpvOpTypeBool && n >= 2 && c[at + 1] < m->bound)
@@ -194,10 +188,8 @@ static void read_globals(struct module *m, const int32_t *values, size_t count)
         if (!id || id >= m->bound)
             continue;
         m->state[id] = VARYING;
-        bool has_result = false, has_type = false;
-        SpvHasResultAndType((SpvOp)op, &has_result, &has_type);
-        m->type_of[id] = has_type ? c[at + 1] : 0;
-        if (!has_type || c[at + 1] >= m->bound || !m->scalar[c[at + 1]])
+        uint32_t type = m->type_of[id] = result_type(c, at);
+        if (!m->scalar[type])
             continue;
         int64_t spec = m->spec_id[id];
         bool given = spec >= 0 && (size_t)spec < count;
@@ -218,7 +210,7 @@ static void read_globals(struct module *m, const int32_t *values, size_t count)
         }
         if (s == CONSTANT) {
             m->state[id] = CONSTANT;
-            m->value[id] = m->scalar[c[at + 1]] == 1 ? v != 0 : v;
+            m->value[id] = m->scalar[type] == 1 ? v != 0 : v;
         }
     }
 }
@@ -236,11 +228,11 @@ struct function {
 static bool read_function(struct module *m, size_t at, struct function *fn)
 {
     const uint32_t *c = m->code;
-    *fn = (struct function){.id = count_of(c, at) >= 3 ? c[at + 2] : 0, .start = at,
+    *fn = (struct function){.id = spirv_count(c, at) >= 3 ? c[at + 2] : 0, .start = at,
                             .first = m->block_count};
     struct block *b = NULL;
-    for (; at < m->words; at += count_of(c, at)) {
-        uint32_t op = op_of(c, at), n = count_of(c, at);
+    for (; at < m->words; at += spirv_count(c, at)) {
+        uint32_t op = spirv_op(c, at), n = spirv_count(c, at);
         if (op == SpvOpFunctionEnd) {
             fn->end = at + n;
             fn->count = m->block_count - fn->first;
@@ -255,8 +247,8 @@ static bool read_function(struct module *m, size_t at, struct function *fn)
             m->block_of[b->label] = (uint32_t)m->block_count;
             continue;
         }
-        if (op != SpvOpLabel && n >= 3 && result_id(c, at) == c[at + 2])
-            m->type_of[c[at + 2]] = c[at + 1];
+        if (result_type(c, at))
+            m->type_of[result_id(c, at)] = result_type(c, at);
         if (!b) { /* OpFunction, OpFunctionParameter: a parameter varies */
             if (op == SpvOpFunctionParameter && n >= 3)
                 m->state[c[at + 2]] = VARYING;
@@ -297,7 +289,7 @@ static bool edge_runs(const struct module *m, const struct block *from, uint32_t
 {
     const uint32_t *c = m->code;
     size_t t = from->terminator;
-    uint32_t op = op_of(c, t), n = count_of(c, t), v = 0;
+    uint32_t op = spirv_op(c, t), n = spirv_count(c, t), v = 0;
     if (!from->runs)
         return false;
     if (op == SpvOpBranch)
@@ -334,14 +326,12 @@ static bool sweep(struct module *m, const struct function *fn)
         struct block *b = &m->blocks[k];
         if (!b->runs)
             continue;
-        for (size_t at = b->start; at < b->end; at += count_of(c, at)) {
-            uint32_t op = op_of(c, at), n = count_of(c, at);
-            uint32_t id = result_id(c, at);
-            bool has_result = false, has_type = false;
-            SpvHasResultAndType((SpvOp)op, &has_result, &has_type);
-            if (!id || id >= m->bound || !has_type)
+        for (size_t at = b->start; at < b->end; at += spirv_count(c, at)) {
+            uint32_t op = spirv_op(c, at), n = spirv_count(c, at);
+            uint32_t id = result_id(c, at), type = result_type(c, at);
+            if (!id || !type)
                 continue;
-            bool tracked = c[at + 1] < m->bound && m->scalar[c[at + 1]];
+            bool tracked = m->scalar[type] != 0;
             uint32_t v = 0;
             enum state s = VARYING;
             if (tracked && op == SpvOpPhi) {
@@ -363,7 +353,7 @@ static bool sweep(struct module *m, const struct function *fn)
             changed |= lower(m, id, s, v);
         }
         size_t t = b->terminator;
-        uint32_t op = op_of(c, t), n = count_of(c, t);
+        uint32_t op = spirv_op(c, t), n = spirv_count(c, t);
         /* the words that name successors: 1; 2 and 3; 2, 4, 6, ... */
         uint32_t first = op == SpvOpBranch ? 1 : 2;
         uint32_t step = op == SpvOpSwitch ? 2 : 1;
@@ -387,8 +377,8 @@ static bool note_calls(const struct module *m, const struct function *fn,
     bool more = false;
     for (size_t k = fn->first; k < fn->first + fn->count; k++)
         for (size_t at = m->blocks[k].start; m->blocks[k].runs && at < m->blocks[k].end;
-             at += count_of(c, at))
-            if (op_of(c, at) == SpvOpFunctionCall && count_of(c, at) >= 4 &&
+             at += spirv_count(c, at))
+            if (spirv_op(c, at) == SpvOpFunctionCall && spirv_count(c, at) >= 4 &&
                 c[at + 3] < m->bound && function_of[c[at + 3]]) {
                 struct function *callee = &functions[function_of[c[at + 3]] - 1];
                 more |= !callee->called;
@@ -411,7 +401,7 @@ static void plan_emptied(struct module *m, const struct function *fn)
         if (!h->runs || !h->selection_merge)
             continue;
         size_t t = h->terminator;
-        uint32_t op = op_of(c, t), n = count_of(c, t);
+        uint32_t op = spirv_op(c, t), n = spirv_count(c, t);
         uint32_t last = op == SpvOpBranchConditional ? 4 : op == SpvOpSwitch ? n : 0;
         for (uint32_t w = 2; w < last; w += op == SpvOpSwitch ? 2 : 1) {
             struct block *arm = block_at(m, c[t + w]);
@@ -438,8 +428,8 @@ static size_t growth(const struct module *m, const struct function *fn)
         const struct block *to = m->blocks[k].branch_to ? block_at(m, m->blocks[k].branch_to)
                                                         : NULL;
         words += m->blocks[k].branch_to ? 1 : 0;
-        for (size_t at = to ? to->start : 0; to && at < to->end; at += count_of(c, at))
-            words += op_of(c, at) == SpvOpPhi ? 2 : 0;
+        for (size_t at = to ? to->start : 0; to && at < to->end; at += spirv_count(c, at))
+            words += spirv_op(c, at) == SpvOpPhi ? 2 : 0;
     }
     return words;
 }
@@ -470,8 +460,8 @@ static uint32_t constant(struct added *a, bool value)
 
 static uint32_t *put(uint32_t *out, const uint32_t *c, size_t at)
 {
-    memcpy(out, c + at, count_of(c, at) * sizeof *c);
-    return out + count_of(c, at);
+    memcpy(out, c + at, spirv_count(c, at) * sizeof *c);
+    return out + spirv_count(c, at);
 }
 
 /* Writes function fn: its blocks that run as they were, but for OpPhi
@@ -484,7 +474,7 @@ static uint32_t *write_function(const struct module *m, const struct function *f
                                 uint32_t *out, bool *defined, struct added *added)
 {
     const uint32_t *c = m->code;
-    for (size_t at = fn->start; at < m->blocks[fn->first].start; at += count_of(c, at)) {
+    for (size_t at = fn->start; at < m->blocks[fn->first].start; at += spirv_count(c, at)) {
         out = put(out, c, at); /* OpFunction and its parameters */
         defined[result_id(c, at)] = true;
     }
@@ -502,11 +492,11 @@ static uint32_t *write_function(const struct module *m, const struct function *f
             }
             continue;
         }
-        for (size_t at = b->start; at < b->end; at += count_of(c, at)) {
+        for (size_t at = b->start; at < b->end; at += spirv_count(c, at)) {
             uint32_t id = result_id(c, at);
             if (id < m->bound)
                 defined[id] = true;
-            uint32_t cond = op_of(c, at) == SpvOpBranchConditional ? c[at + 1] : 0, v = 0;
+            uint32_t cond = spirv_op(c, at) == SpvOpBranchConditional ? c[at + 1] : 0, v = 0;
             if (cond && added->bool_type && state_of(m, cond, &v) == CONSTANT) {
                 /* A condition known here, made a literal constant: lavapipe
                  * then drops the arm not taken before it makes any code
@@ -517,7 +507,7 @@ static uint32_t *write_function(const struct module *m, const struct function *f
                 branch[1] = constant(added, v != 0);
                 continue;
             }
-            if (op_of(c, at) != SpvOpPhi) {
+            if (spirv_op(c, at) != SpvOpPhi) {
                 out = put(out, c, at);
                 continue;
             }
@@ -525,7 +515,7 @@ static uint32_t *write_function(const struct module *m, const struct function *f
             out += 3;
             head[1] = c[at + 1];
             head[2] = c[at + 2];
-            for (uint32_t w = 3; w + 1 < count_of(c, at); w += 2) {
+            for (uint32_t w = 3; w + 1 < spirv_count(c, at); w += 2) {
                 const struct block *from = block_at(m, c[at + w + 1]);
                 if (from && !from->runs)
                     continue; /* emptied: no longer a predecessor, or below */
@@ -549,11 +539,11 @@ static uint32_t *write_function(const struct module *m, const struct function *f
 /* Whether a name or decoration at `at` is about an id that stays. */
 static bool about_kept(const uint32_t *c, size_t at, const bool *defined, uint32_t bound)
 {
-    uint32_t op = op_of(c, at);
+    uint32_t op = spirv_op(c, at);
     if (op != SpvOpName && op != SpvOpDecorate && op != SpvOpDecorateId &&
         op != SpvOpDecorateString)
         return true;
-    return count_of(c, at) < 2 || (c[at + 1] < bound && defined[c[at + 1]]);
+    return spirv_count(c, at) < 2 || (c[at + 1] < bound && defined[c[at + 1]]);
 }
 
 /* The functions of the module, in m->blocks and `functions` (function_of:
@@ -563,13 +553,13 @@ static size_t read_functions(struct module *m, struct function *functions, size_
                              uint32_t *function_of)
 {
     const uint32_t *c = m->code;
-    size_t globals_end = HEADER_WORDS;
-    while (globals_end < m->words && op_of(c, globals_end) != SpvOpFunction)
-        globals_end += count_of(c, globals_end);
+    size_t globals_end = SPIRV_HEADER_WORDS;
+    while (globals_end < m->words && spirv_op(c, globals_end) != SpvOpFunction)
+        globals_end += spirv_count(c, globals_end);
     *count = 0;
     for (size_t at = globals_end; at < m->words;) {
         struct function *fn = &functions[*count];
-        if (op_of(c, at) != SpvOpFunction || !read_function(m, at, fn) || function_of[fn->id])
+        if (spirv_op(c, at) != SpvOpFunction || !read_function(m, at, fn) || function_of[fn->id])
             return 0;
         function_of[fn->id] = (uint32_t)++*count;
         at = fn->end;
@@ -578,7 +568,7 @@ static size_t read_functions(struct module *m, struct function *functions, size_
 }
 
 uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *values,
-                           size_t count, size_t *out_words, size_t *removed)
+                           size_t count, size_t *out_words)
 {
     if (!well_formed(code, words))
         return NULL;
@@ -615,8 +605,8 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
             ;
         plan_emptied(&m, &functions[k]);
     }
-    for (size_t at = HEADER_WORDS; at < globals_end; at += count_of(code, at))
-        if (op_of(code, at) == SpvOpEntryPoint && count_of(code, at) >= 3 &&
+    for (size_t at = SPIRV_HEADER_WORDS; at < globals_end; at += spirv_count(code, at))
+        if (spirv_op(code, at) == SpvOpEntryPoint && spirv_count(code, at) >= 3 &&
             code[at + 2] < b && function_of[code[at + 2]])
             functions[function_of[code[at + 2]] - 1].called = true;
     for (bool more = true; more;) {
@@ -641,7 +631,7 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
     for (uint32_t id = 0; id < b && !added.bool_type; id++)
         added.bool_type = m.scalar[id] == 1 ? id : 0;
     uint32_t *f = funcs_out;
-    for (size_t at = HEADER_WORDS; at < globals_end; at += count_of(code, at)) {
+    for (size_t at = SPIRV_HEADER_WORDS; at < globals_end; at += spirv_count(code, at)) {
         uint32_t id = result_id(code, at);
         if (id < b)
             defined[id] = true;
@@ -650,9 +640,9 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
         if (functions[k].called)
             f = write_function(&m, &functions[k], f, defined, &added);
     uint32_t *w = out;
-    memcpy(w, code, HEADER_WORDS * sizeof *code);
-    w += HEADER_WORDS;
-    for (size_t at = HEADER_WORDS; at < globals_end; at += count_of(code, at))
+    memcpy(w, code, SPIRV_HEADER_WORDS * sizeof *code);
+    w += SPIRV_HEADER_WORDS;
+    for (size_t at = SPIRV_HEADER_WORDS; at < globals_end; at += spirv_count(code, at))
         if (about_kept(code, at, defined, m.bound))
             w = put(w, code, at);
     for (uint32_t type = 0; type < b; type++)
@@ -671,7 +661,6 @@ uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *va
     w += f - funcs_out;
     out[3] = added.next_id;
     *out_words = (size_t)(w - out);
-    *removed = words > *out_words ? words - *out_words : 0;
     result = out;
     out = NULL;
 done:

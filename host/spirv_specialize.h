@@ -18,10 +18,10 @@
  * means the same under those constants (which it still declares, and the
  * pipeline still sets): what is left runs exactly as before.
  *
- * Returns a malloc'd module (*out_words its length, *removed how many
- * words went), or NULL when `code` is malformed, uses something this does
- * not follow (then the caller keeps the original), or memory runs out. */
+ * Returns a malloc'd module (*out_words its length), or NULL when `code`
+ * is malformed, uses something this does not follow (then the caller
+ * keeps the original), or memory runs out. */
 uint32_t *spirv_specialize(const uint32_t *code, size_t words, const int32_t *values,
-                           size_t count, size_t *out_words, size_t *removed);
+                           size_t count, size_t *out_words);
 
 #endif
