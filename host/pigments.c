@@ -9,7 +9,8 @@
  *             mix(color1, color2, clamp((x - p) . q, 0, 1)),
  *             q = (p1 - p0) / |p1 - p0|^2
  *   texmap    p = the s row, q = the t row; the texture's texels, size
- *             and place in the texel buffer come from scene_pack.c
+ *             and place in the texel buffer, and color1.x = its steepest
+ *             step (texture_step), come from scene_pack.c
  * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 
@@ -138,7 +139,8 @@ static int add_texture(struct scene_reader *r, char *path, const struct token *a
     }
     s->textures = grown;
     s->textures[s->ntextures] = (struct scene_texture){
-        .path = path, .width = img.width, .height = img.height, .rgb = img.rgb};
+        .path = path, .width = img.width, .height = img.height, .rgb = img.rgb,
+        .step = texture_step(&img)};
     *index = s->ntextures++;
     return 0;
 }

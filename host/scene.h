@@ -41,6 +41,7 @@ struct scene_texture {
     char *path;   /* as resolved against the scene file's folder */
     int width, height;
     uint8_t *rgb; /* width * height * 3 bytes */
+    double step;  /* texture_step's */
 };
 
 struct scene_finish {

@@ -156,6 +156,7 @@ static void pigment_record(const struct scene *s, const struct layout *lay, size
         kind[1] = (int32_t)lay->texel_offset[rec->texture];
         kind[2] = t->width;
         kind[3] = t->height;
+        rec->color1[0] = t->step;
     }
 }
 

@@ -380,3 +380,22 @@ int texture_load(const char *path, struct texture_image *out, char *why,
     free(data);
     return rc;
 }
+
+double texture_step(const struct texture_image *img)
+{
+    int most = 0;
+    for (int y = 0; y < img->height; y++) {
+        const uint8_t *row = img->rgb + (size_t)y * img->width * 3;
+        const uint8_t *next = img->rgb + (size_t)((y + 1) % img->height) * img->width * 3;
+        for (int x = 0; x < img->width; x++) {
+            const uint8_t *right = row + (size_t)((x + 1) % img->width) * 3;
+            for (int c = 0; c < 3; c++) {
+                int here = row[3 * x + c];
+                int across = abs(here - right[c]), down = abs(here - next[3 * x + c]);
+                most = across > most ? across : most;
+                most = down > most ? down : most;
+            }
+        }
+    }
+    return most / 255.0;
+}

@@ -40,4 +40,11 @@ int texture_decode(const unsigned char *data, size_t len, struct texture_image *
 int texture_decode_ppm(const unsigned char *data, size_t len,
                        struct texture_image *out, char *why, size_t whysize);
 
+/* The steepest step of the image: the largest difference of a channel
+ * between two texels side by side or one above the other, the image
+ * repeating (its last column beside its first, its last row above its
+ * first), in [0, 1]. Filtered bilinearly, the texture's color moves by at
+ * most that across a texel (the shader's pigment_slope). */
+double texture_step(const struct texture_image *img);
+
 #endif

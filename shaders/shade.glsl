@@ -67,11 +67,12 @@ void light_sample(int j, vec2 area_shift, out rvec3 pos, out vec3 color, out vec
     }
 }
 
-// What light sample j adds at the point if nothing shadows it (`lit`),
-// and the shadow ray that decides it: from sh.origin along dir, dist long.
-// False when it adds nothing anyway (the light is behind the surface, or
-// at the point).
-bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist, out vec3 lit)
+// What light sample j adds at the point if nothing shadows it (`lit`, of
+// which `tint` times the pigment is the diffuse part), and the shadow ray
+// that decides it: from sh.origin along dir, dist long. False when it
+// adds nothing anyway (the light is behind the surface, or at the point).
+bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist, out vec3 lit,
+               out vec3 tint)
 {
     rvec3 pos;
     vec3 color;
@@ -79,7 +80,7 @@ bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist,
     light_sample(j, area_shift, pos, color, att);
     dir = sh.nf;
     dist = 0.0;
-    lit = vec3(0.0);
+    lit = tint = vec3(0.0);
     rvec3 to_light = pos - sh.p;
     real d = length(to_light);
     if (d == 0.0)
@@ -96,5 +97,6 @@ bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist,
     rvec3 r = 2.0 * dot(sh.nf, l) * sh.nf - l;
     float spec = phong_power(float(dot(r, sh.view)), sh.fin.phong.w);
     lit = a * color * (sh.fin.phong.y * ndotl * sh.pig + sh.fin.phong.z * spec);
+    tint = a * color * sh.fin.phong.y * ndotl;
     return true;
 }

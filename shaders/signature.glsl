@@ -8,7 +8,8 @@
 // (render.c reads it, retrace.c marks from it): a 29-bit hash of its
 // decisions, and three bits. UNSURE: a decision with a local margin (a
 // checker cell face, the sign of n.d, total internal reflection) was
-// within its doubt of flipping. SENSITIVE: a boundary seen there may move
+// within its doubt of flipping, or a texture's or gradient's color may
+// slide by a level with the hit point (trace.comp, pigment_slope). SENSITIVE: a boundary seen there may move
 // by frame.limits.y pixels or more. A pixel is traced again in double
 // where it is UNSURE, or where its hash differs from a neighbour's and
 // one of the two is SENSITIVE: which object a ray hits, and shadows, have

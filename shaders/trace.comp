@@ -42,6 +42,10 @@ layout(local_size_x = TP2_GROUP_X, local_size_y = TP2_GROUP_Y) in;
 const int BRANCHES = int(HAS_REFLECT) + int(HAS_REFRACT);
 const int MAX_RAYS = BRANCHES == 2 ? TP2_MAX_RAYS : BRANCHES == 1 ? TP2_MAX_DEPTH + 1 : 1;
 const int STACK_SIZE = BRANCHES == 2 ? TP2_STACK_SIZE : 1;
+// Pigments whose color varies smoothly, so that a hit point's doubt is a
+// doubt about its color (under SIGNATURES).
+const bool SMOOTH_PIGMENTS = SIGNATURES && (USES_PIGMENT(TP2_PIGMENT_TEXMAP) ||
+                                            USES_PIGMENT(TP2_PIGMENT_GRADIENT));
 
 struct Ray {
     rvec3 origin;
@@ -139,14 +143,15 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     Finish fin = load_finish(ids.z);
     sh.fin = fin;
     sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
-    vec3 local = fin.phong.x * frame.ambient.rgb * sh.pig;
+    vec3 tint = fin.phong.x * frame.ambient.rgb; // what multiplies the pigment
+    vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
-        vec3 lit;
-        if (!light_ray(sh, j, area_shift, d, dist, lit))
+        vec3 lit, lit_tint;
+        if (!light_ray(sh, j, area_shift, d, dist, lit, lit_tint))
             continue;
         ++ray_tally[TP2_STAT_SHADOW];
         // The arealight's samples from one point tend to be shadowed by
@@ -158,10 +163,17 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         occluder = shadowed ? blocker : occluder;
         if (!area_sample(j)) // each is a share of its light, turned per pixel
             decided(sig, uint(shadowed));
-        if (!shadowed)
+        if (!shadowed) {
             local += lit;
+            tint += lit_tint;
+        }
     }
     color += weight * local;
+    // A steep texture or gradient moves with the hit point (signature.glsl).
+    if (SMOOTH_PIGMENTS && at_stake(stake) &&
+        stake * max(tint.r, max(tint.g, tint.b)) * pigment_slope(ids.y) * hd.along >=
+            frame.limits.w)
+        sig |= UNSURE;
     rvec3 p = sh.p;
 
     float kr = HAS_REFLECT ? fin.optics.x : 0.0;

@@ -9,8 +9,9 @@
  * overflow stb_image 2.27 (found by tests/fuzz/fuzz_image.c; JPEG now
  * goes to libjpeg-turbo), refused wherever they come; PNG (libpng) cut,
  * with a chunk longer than the file or a bad CRC refused; formats that
- * are not SPEC's refused before stb_image. Prints "N passed, M failed"
- * last. */
+ * are not SPEC's refused before stb_image. texture_step: the steepest
+ * step between neighbouring texels, across the image's wrap too. Prints
+ * "N passed, M failed" last. */
 #define _DEFAULT_SOURCE /* mkstemps, truncate */
 #include <stdint.h>
 #include <stdio.h>
@@ -306,8 +307,33 @@ static void test_png_chunks(void)
            "PNG with a bad CRC: %s", why);
 }
 
+/* texture_step: neighbours side by side and one above the other, the
+ * last column beside the first and the last row above the first. */
+static void test_step(void)
+{
+    uint8_t flat[2 * 3 * 3];
+    memset(flat, 90, sizeof flat);
+    struct texture_image t = {3, 2, flat};
+    expect(texture_step(&t) == 0.0, "flat image: step %g", texture_step(&t));
+    flat[(0 * 3 + 1) * 3 + 2] = 100; /* blue, middle of the top row: 10 */
+    expect(texture_step(&t) == 10 / 255.0, "one texel 10 up: %g", texture_step(&t));
+    for (int y = 0; y < 2; y++) /* red 0, 50, 100 across: 100 by the wrap */
+        for (int x = 0; x < 3; x++)
+            flat[(y * 3 + x) * 3 + 0] = (uint8_t)(50 * x);
+    expect(texture_step(&t) == 100 / 255.0, "wrapped columns: %g", texture_step(&t));
+    uint8_t tall[4 * 1 * 3] = {0, 0, 0, 0, 40, 0, 0, 80, 0, 0, 120, 0};
+    struct texture_image column = {1, 4, tall}; /* green 0..120 down: 120 by the wrap */
+    expect(texture_step(&column) == 120 / 255.0, "wrapped rows: %g", texture_step(&column));
+    struct texture_image one = {3, 2, (uint8_t *)image};
+    expect(texture_step(&one) == 1.0, "full steps: %g", texture_step(&one));
+    uint8_t single[3] = {7, 8, 9};
+    struct texture_image dot = {1, 1, single};
+    expect(texture_step(&dot) == 0.0, "1 x 1: %g", texture_step(&dot));
+}
+
 int main(void)
 {
+    test_step();
     test_ppm();
     test_ppm_errors();
     test_files();
