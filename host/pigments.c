@@ -9,8 +9,8 @@
  *             mix(color1, color2, clamp((x - p) . q, 0, 1)),
  *             q = (p1 - p0) / |p1 - p0|^2
  *   texmap    p = the s row, q = the t row; the texture's texels, size
- *             and place in the texel buffer, and color1.x = its steepest
- *             step (texture_step), come from scene_pack.c
+ *             and place in the texel buffer come from scene_pack.c
+ * and color1.w = the kind's slope (0 without one). 
  * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 
@@ -96,6 +96,17 @@ static void gradient_pack(const struct scene_pigment *pg, struct pigment_record 
         rec->q[i] = u[i] / len;
 }
 
+/* The color span over the distance between the end points. */
+static double gradient_slope(const struct scene *s, const struct scene_pigment *pg)
+{
+    (void)s;
+    double d[3], span = 0;
+    vec3_sub(pg->p1, pg->p0, d);
+    for (int c = 0; c < 3; c++)
+        span = fmax(span, fabs(pg->color2[c] - pg->color1[c]));
+    return span / sqrt(vec3_dot(d, d));
+}
+
 static void gradient_move(struct pigment_record *rec, const double origin[3])
 {
     vec3_sub(rec->p, origin, rec->p);
@@ -172,6 +183,17 @@ static void move_row(double r[4], const double origin[3])
         r[3] = fmod(r[3] + shift, 1.0);
 }
 
+/* Filtered bilinearly, a channel moves by at most the texture's steepest
+ * step between neighbouring texels across a texel: that, times texels per
+ * unit of length along s or t. */
+static double texmap_slope(const struct scene *s, const struct scene_pigment *pg)
+{
+    const struct scene_texture *t = &s->textures[pg->texture];
+    double across = sqrt(vec3_dot(pg->s, pg->s)) * t->width;
+    double down = sqrt(vec3_dot(pg->t, pg->t)) * t->height;
+    return t->step * fmax(across, down);
+}
+
 static void texmap_move(struct pigment_record *rec, const double origin[3])
 {
     move_row(rec->p, origin);
@@ -191,13 +213,13 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
 
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
     [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, unmoved,
-                       solid_json},
+                       solid_json, NULL},
     [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack,
-                         checker_move, checker_json},
+                         checker_move, checker_json, NULL},
     [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
-                          gradient_move, gradient_json},
+                          gradient_move, gradient_json, gradient_slope},
     [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_move,
-                        texmap_json},
+                        texmap_json, texmap_slope},
 };
 
 const char *pigment_keywords(void)

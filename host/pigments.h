@@ -24,6 +24,7 @@ enum pigment {
  * double until packing. */
 struct pigment_record {
     double color1[3], color2[3];
+    double slope; /* the kind's slope */
     double p[4], q[4];
     long texture; /* index into scene.textures, or -1 */
 };
@@ -43,6 +44,12 @@ struct pigment_kind {
     /* Writes its fields for tp2 --dump-scene (scene_json.h): `"a": ...,
      * "b": ...`, without braces. */
     void (*json)(FILE *out, const struct scene *s, const struct scene_pigment *pg);
+    /* How fast its color may change along a surface: color units per unit
+     * of length, the most of any channel (signature.glsl's steep-pigment
+     * test: a hit point off by d has its color off by up to d times this).
+     * NULL for none: a solid's color does not change, a checker's cells
+     * are decisions of their own. */
+    double (*slope)(const struct scene *s, const struct scene_pigment *pg);
 };
 
 extern const struct pigment_kind pigment_kinds[PIGMENT_COUNT];

@@ -148,6 +148,7 @@ static void pigment_record(const struct scene *s, const struct layout *lay, size
     memset(rec, 0, sizeof *rec);
     rec->texture = -1;
     pigment_kinds[pg->kind].pack(pg, rec);
+    rec->slope = pigment_kinds[pg->kind].slope ? pigment_kinds[pg->kind].slope(s, pg) : 0;
     if (lay->moved)
         pigment_kinds[pg->kind].move(rec, lay->origin);
     kind[0] = pigment_kinds[pg->kind].gpu_kind;
@@ -156,7 +157,6 @@ static void pigment_record(const struct scene *s, const struct layout *lay, size
         kind[1] = (int32_t)lay->texel_offset[rec->texture];
         kind[2] = t->width;
         kind[3] = t->height;
-        rec->color1[0] = t->step;
     }
 }
 

@@ -52,22 +52,12 @@ bool unsure_cell(rvec3 x, rvec3 cell, real size, rvec3 nf, float doubt)
 }
 
 // How fast pigment `index`'s color may change along a surface: color
-// units per unit of length, the most of any channel. A hit point off by d
-// along the surface has its color off by up to d times this (a checker's
-// cells are decisions instead: unsure_cell). A texture is filtered
-// bilinearly, so a channel moves by at most its steepest step between
-// texels (color1.x, host/pigments.c) across a texel.
+// units per unit of length, the most of any channel (each kind's slope
+// in host/pigments.c; 0 for solids and checkers). A hit point off by d
+// along the surface has its color off by up to d times this.
 float pigment_slope(int index)
 {
-    ivec4 info = pigment_kind(index); // kind, first texel, width, height
-    if (USES_PIGMENT(TP2_PIGMENT_GRADIENT) && info.x == TP2_PIGMENT_GRADIENT) {
-        vec3 span = abs(pigment_color2(index).rgb - pigment_color1(index).rgb);
-        return length(vec3(pigment_q(index).xyz)) * max(span.r, max(span.g, span.b));
-    }
-    if (USES_PIGMENT(TP2_PIGMENT_TEXMAP) && info.x == TP2_PIGMENT_TEXMAP)
-        return pigment_color1(index).x * max(length(vec3(pigment_p(index).xyz)) * float(info.z),
-                                             length(vec3(pigment_q(index).xyz)) * float(info.w));
-    return 0.0;
+    return pigment_color1(index).w;
 }
 
 // The color of pigment `index` at p (doubt: see unsure_cell); a checker's

@@ -316,6 +316,12 @@ static void test_files_beside_scene(void)
               s.textures[0].rgb[0] == 255 && s.textures[0].rgb[5] == 255);
         CHECK(s.pigments[0].s[0] == 1 && s.pigments[2].t[3] == 0.5);
         CHECK(vec_eq(s.pigments[1].p1, 1, 0, 0) && vec_eq(s.pigments[1].color2, 0, 0, 1));
+        /* Slopes: the texture steps by 255 between its two texels, and s
+         * crosses its 2 texels per unit; the gradient spans 1 over 1. */
+        CHECK(s.textures[0].step == 1.0 && s.textures[1].step == 1.0);
+        CHECK(pigment_kinds[PIGMENT_TEXMAP].slope(&s, &s.pigments[0]) == 2.0);
+        CHECK(pigment_kinds[PIGMENT_GRADIENT].slope(&s, &s.pigments[1]) == 1.0);
+        CHECK(!pigment_kinds[PIGMENT_SOLID].slope && !pigment_kinds[PIGMENT_CHECKER].slope);
         static const double tris[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0};
         CHECK(s.objects[0].kind == SHAPE_MESH && reals_are(&s, 0, tris, 18));
         scene_free(&s);
