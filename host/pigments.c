@@ -10,7 +10,7 @@
  *             q = (p1 - p0) / |p1 - p0|^2
  *   texmap    p = the s row, q = the t row; the texture's texels, size
  *             and place in the texel buffer come from scene_pack.c
- * and color1.w = the kind's slope (0 without one). 
+ * and color1.w = the kind's slope (0 without one).
  * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 

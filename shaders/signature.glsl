@@ -9,14 +9,14 @@
 // decisions, and three bits. UNSURE: a decision with a local margin (a
 // checker cell face, the sign of n.d, total internal reflection) was
 // within its doubt of flipping, or a texture's or gradient's color may
-// slide by a level with the hit point (trace.comp, pigment_slope). SENSITIVE: a boundary seen there may move
-// by frame.limits.y pixels or more. A pixel is traced again in double
-// where it is UNSURE, or where its hash differs from a neighbour's and
-// one of the two is SENSITIVE: which object a ray hits, and shadows, have
-// no local margin (a ray that misses an object cannot tell by how much),
-// so their boundaries are found between neighbours; where a boundary
-// cannot move by a tenth of a pixel, a flip would need it to pass that
-// near a pixel's center. STOPPED: an UNSURE pixel is traced again, every
+// slide by a level with the hit point (trace.comp, pigment_slope).
+// SENSITIVE: a boundary seen there may move by frame.limits.y pixels or
+// more. A pixel is traced again in double where it is UNSURE, or where
+// its hash differs from a neighbour's and one of the two is SENSITIVE:
+// which object a ray hits, and shadows, have no local margin (a ray that
+// misses an object cannot tell by how much), so their boundaries are
+// found between neighbours; where a boundary cannot move by a tenth of a
+// pixel, a flip would need it to pass that near a pixel's center. STOPPED: an UNSURE pixel is traced again, every
 // sample, whatever else its rays do, so its float walk stops at that
 // decision; its hash then covers the rays before it only, and the host
 // takes it to differ from every neighbour's.
