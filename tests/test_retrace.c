@@ -2,7 +2,10 @@
  * (retrace_mark): UNSURE pixels; both sides of a boundary between hashes
  * when either side is SENSITIVE, across the band's edges too; nothing
  * where hashes differ but neither side is sensitive; a STOPPED pixel's
- * hash taken to differ from every neighbour's. */
+ * hash taken to differ from every neighbour's; and, on bands wide enough
+ * for the quick skip of uniform runs, the same marks as the rule read
+ * pixel by pixel. */
+#include <stdbool.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -48,6 +51,92 @@ static void expect_grid(const char *what, int got[N][W], const int want[N][W])
         for (int x = 0; x < W; x++)
             expect(got[y][x] == want[y][x], "%s: pixel (%d, %d) marked %d, want %d", what, x,
                    y, got[y][x], want[y][x]);
+}
+
+/* The rule read pixel by pixel (retrace.h), for bands of any width. */
+static bool marked_by_rule(const uint32_t *above, const uint32_t *band, const uint32_t *below,
+                           int width, int n, int x, int y)
+{
+    uint32_t sig = band[(size_t)y * width + x];
+    if (sig & RETRACE_UNSURE)
+        return true;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int nx = x + dx, ny = y + dy;
+            const uint32_t *row = ny < 0 ? above : ny >= n ? below : band + (size_t)ny * width;
+            if (!row || nx < 0 || nx >= width || (dx == 0 && dy == 0))
+                continue;
+            uint32_t other = row[nx];
+            bool differ = ((sig ^ other) & RETRACE_HASH) || ((sig | other) & RETRACE_STOPPED);
+            if (differ && ((sig | other) & RETRACE_SENSITIVE))
+                return true;
+        }
+    return false;
+}
+
+/* A band wider than the runs retrace_mark skips whole (64 pixels): one
+ * word, with patches of other words and flag bits placed by a fixed
+ * pseudo-random stream, from single pixels to runs wider than 64 (a wide
+ * run of one UNSURE word is uniform and still marked), some at the runs'
+ * ends and the image's edges. retrace_mark must list exactly the pixels
+ * the rule marks, in block order. */
+static void check_wide_band(unsigned seed, int width, bool rows_around)
+{
+    enum { WW = 300, NN = 7 };
+    static uint32_t rows[NN + 2][WW];
+    static uint32_t list[WW * NN];
+    unsigned state = seed;
+    for (int y = 0; y < NN + 2; y++)
+        for (int x = 0; x < width; x++)
+            rows[y][x] = 5;
+    for (int k = 0; k < (int)(seed / 4 % 8); k++) {
+        state = state * 1103515245u + 12345u;
+        unsigned r = state >> 8;
+        int x = (int)(r % (unsigned)width), y = (int)(r / (unsigned)width % (NN + 2));
+        static const uint32_t kinds[] = {6, 5 | S, 5 | U, 5 | STOP, 6 | S, 5 | STOP | S};
+        uint32_t word = kinds[(r >> 12) % 6];
+        bool wide = (r >> 16) % 3 == 0;
+        int w = wide ? 60 + (int)(r >> 18) % 100 : 1 + (int)(r >> 18) % 3;
+        int h = wide ? 1 + (int)(r >> 20) % 4 : w;
+        for (int dy = 0; dy < h && y + dy < NN + 2; dy++)
+            for (int dx = 0; dx < w && x + dx < width; dx++)
+                rows[y + dy][x + dx] = word;
+    }
+    /* A lone pixel that only one corner of a run (64 pixels by the rows
+     * of a block) sees, diagonally: (63, 1) from (64, 2), (128, 3) from
+     * (127, 4), (192, 6) from (191, 5); one per seed, or none. */
+    static const int lone[3][2] = {{63, 1}, {128, 3}, {192, 6}};
+    int which = (int)(seed % 4);
+    if (which < 3 && lone[which][0] < width)
+        rows[1 + lone[which][1]][lone[which][0]] = 9 | S;
+    const uint32_t *above = rows_around ? rows[0] : NULL;
+    const uint32_t *below = rows_around ? rows[NN + 1] : NULL;
+    static uint32_t band[NN * WW];
+    for (int y = 0; y < NN; y++)
+        memcpy(band + (size_t)y * width, rows[y + 1], (size_t)width * sizeof *band);
+    size_t n = retrace_mark(above, band, below, width, NN, list);
+    static bool listed[NN * WW];
+    memset(listed, 0, sizeof listed);
+    for (size_t i = 0; i < n; i++)
+        listed[list[i]] = true;
+    size_t want = 0;
+    for (int y = 0; y < NN; y++)
+        for (int x = 0; x < width; x++) {
+            bool rule = marked_by_rule(above, band, below, width, NN, x, y);
+            want += rule;
+            expect(listed[y * width + x] == rule,
+                   "wide band (seed %u, width %d): pixel (%d, %d) listed %d, rule %d", seed,
+                   width, x, y, listed[y * width + x], rule);
+        }
+    expect(n == want, "wide band (seed %u, width %d): %zu listed, %zu marked by the rule", seed,
+           width, n, want);
+    for (size_t i = 1; i < n; i++) {
+        long a = list[i - 1], b = list[i];
+        long block_a = a / width / RETRACE_BLOCK_Y * width + a % width / RETRACE_BLOCK_X;
+        long block_b = b / width / RETRACE_BLOCK_Y * width + b % width / RETRACE_BLOCK_X;
+        expect(block_a < block_b || (block_a == block_b && a < b),
+               "wide band (seed %u, width %d): %ld listed after %ld", seed, width, b, a);
+    }
 }
 
 int main(void)
@@ -111,5 +200,9 @@ int main(void)
                                     {0, 0, 1, 1, 1}, {0, 0, 1, 1, 1}};
     mark(NULL, stopped, NULL, got);
     expect_grid("stopped", got, stopped_want);
+
+    static const int widths[] = {300, 256, 129, 65};
+    for (unsigned seed = 0; seed < 256; seed++)
+        check_wide_band(seed, widths[seed / 32 % 4], seed % 3 != 0);
     return unit_report();
 }
