@@ -16,11 +16,13 @@ static const uint32_t *row_at(const uint32_t *above, const uint32_t *rows,
 
 /* Whether a boundary between pixels of signatures a and b needs a double
  * trace: their hashes differ (or one is partial, RETRACE_STOPPED) and one
- * of them says its boundaries may move (RETRACE_SENSITIVE). */
+ * of them says its boundaries may move (RETRACE_SENSITIVE); or their
+ * camera rays' shadows differ (RETRACE_SHADOWS, recorded only where the
+ * edge may move by a fiftieth of what SENSITIVE needs). */
 static bool boundary(uint32_t a, uint32_t b)
 {
     bool differ = ((a ^ b) & RETRACE_HASH) != 0 || ((a | b) & RETRACE_STOPPED) != 0;
-    return differ && ((a | b) & RETRACE_SENSITIVE) != 0;
+    return (differ && ((a | b) & RETRACE_SENSITIVE) != 0) || ((a ^ b) & RETRACE_SHADOWS) != 0;
 }
 
 /* Whether sig has such a boundary with one of the three pixels of row r

@@ -8,12 +8,15 @@
 #include "tp2_shared.h"
 
 /* The float pass gives each pixel a signature (shaders/signature.glsl,
- * tp2_shared.h): a hash of its decisions, and three bits. */
+ * tp2_shared.h): a hash of its decisions, three bits and its camera rays'
+ * shadows. */
 #define RETRACE_UNSURE TP2_SIG_UNSURE       /* a decision was within float's error */
 #define RETRACE_SENSITIVE TP2_SIG_SENSITIVE /* its boundaries may move by a pixel's
                                              * fraction that matters */
 #define RETRACE_STOPPED TP2_SIG_STOPPED     /* its walk stopped at an UNSURE
                                              * decision: the hash is partial */
+#define RETRACE_SHADOWS TP2_SIG_SHADOWS     /* the point lights its camera rays
+                                             * saw shadowed, where that counts */
 #define RETRACE_HASH TP2_SIG_HASH
 
 /* What counts (frame.limits.y and .w): a boundary between two pixels of
@@ -29,9 +32,9 @@
 
 /* A pixel is traced again in double where it is UNSURE, or where its hash
  * differs from one of its eight neighbours' and one of the two is
- * SENSITIVE: a boundary lies between them that rounding may move across
- * a pixel's center. A STOPPED pixel's hash is taken to differ from every
- * neighbour's.
+ * SENSITIVE, or where their SHADOWS differ: a boundary lies between them
+ * that rounding may move across a pixel's center. A STOPPED pixel's hash
+ * is taken to differ from every neighbour's.
  *
  * Marks such pixels of a band of n rows of `width` (rows[y * width + x]),
  * neighbours in the row above the band (above, or NULL at the image's

@@ -5,21 +5,24 @@
 // which object a ray hits (and which face), whether a light is shadowed,
 // which checker cell a point lies in, whether a ray enters or leaves,
 // whether it is totally reflected. The float pass keeps a word per pixel
-// (render.c reads it, retrace.c marks from it): a 29-bit hash of its
-// decisions, and three bits. UNSURE: a decision with a local margin (a
-// checker cell face, the sign of n.d, total internal reflection) was
-// within its doubt of flipping, or a texture's or gradient's color may
-// slide by a level with the hit point (trace.comp, pigment_slope).
+// (render.c reads it, retrace.c marks from it): a 25-bit hash of its
+// decisions, three bits and its camera rays' shadows. UNSURE: a decision
+// with a local margin (a checker cell face, the sign of n.d, total
+// internal reflection) was within its doubt of flipping, or a texture's
+// or gradient's color may slide by a level with the hit point
+// (trace.comp, pigment_slope).
 // SENSITIVE: a boundary seen there may move by frame.limits.y pixels or
 // more. A pixel is traced again in double where it is UNSURE, or where
 // its hash differs from a neighbour's and one of the two is SENSITIVE:
 // which object a ray hits, and shadows, have no local margin (a ray that
 // misses an object cannot tell by how much), so their boundaries are
 // found between neighbours; where a boundary cannot move by a tenth of a
-// pixel, a flip would need it to pass that near a pixel's center. STOPPED: an UNSURE pixel is traced again, every
-// sample, whatever else its rays do, so its float walk stops at that
-// decision; its hash then covers the rays before it only, and the host
-// takes it to differ from every neighbour's.
+// pixel, a flip would need it to pass that near a pixel's center (for
+// shadow edges the camera sees, a fiftieth of that: SHADOWS, at the end).
+// STOPPED: an UNSURE pixel is traced again, every sample, whatever else
+// its rays do, so its float walk stops at that decision; its hash then
+// covers the rays before it only, and the host takes it to differ from
+// every neighbour's.
 //
 // The doubt is a bound on float's error, carried along each ray and
 // measured in pixels against the footprint of its pixel (below). It is a
@@ -29,6 +32,7 @@
 const uint UNSURE = TP2_SIG_UNSURE;       // a decision within float's error of flipping
 const uint SENSITIVE = TP2_SIG_SENSITIVE; // boundaries here move by frame.limits.y pixels or more
 const uint STOPPED = TP2_SIG_STOPPED;     // the walk stopped at its first UNSURE decision
+const uint SHADOWS = TP2_SIG_SHADOWS;     // the camera rays' shadows (shadow_seen)
 const uint HASH = TP2_SIG_HASH;
 const uint SIGNATURE_START = 2166136261u & HASH; // FNV-1a's offset basis
 
@@ -36,7 +40,7 @@ const uint SIGNATURE_START = 2166136261u & HASH; // FNV-1a's offset basis
 // one step of a ray takes (an intersection, a normal, a reflection).
 const float ROUNDING = 4.0 * 5.9604645e-8;
 
-// Mixes one decision into the hash (FNV-1a on a whole word, 29 bits);
+// Mixes one decision into the hash (FNV-1a on a whole word, 25 bits);
 // compiled out when the pass records no signatures.
 void decided(inout uint sig, uint choice)
 {
@@ -167,4 +171,41 @@ void shifted(inout uint sig, float pixels, float stake)
 {
     if (at_stake(stake) && pixels >= frame.limits.y)
         sig |= UNSURE;
+}
+
+// The camera rays' shadows (SHADOWS): which point lights a pixel's camera
+// rays saw shadowed, a bit per class of lights (j % 4), over its samples.
+// The host marks both pixels wherever these differ between neighbours,
+// SENSITIVE or not. A shadow edge on a surface the camera sees, moved by
+// rounding by less than the tenth of a pixel that makes a pixel
+// SENSITIVE, still flips the pixels whose centers lie that near it, and
+// a long edge passes that near some: a course file's floor, a sphere of
+// radius 100, moves its edges by 0.0016-0.006 pixel, and 75 pixels
+// flipped at 1920 x 1080. They are recorded where rounding may move them
+// by SHADOW_SHARE of that tenth or more: an edge moved by less needs 500
+// pixels of length for each pixel it may flip. (Recorded at any move,
+// they marked quadric.txt's 5.4% of pixels instead of 2.4%; recorded at
+// any depth, spheres.txt's 9.9% instead of 5.4%, as deeper rays' doubts
+// grow through curved mirrors. README.TXT "Accuracy".) Lit and unlit (the
+// light behind the surface, or no hit) are not told apart, so that
+// terminators and silhouettes are not marked for it. One flip changes a
+// bit wherever no other light of its class shadows the point (always,
+// with up to four lights).
+const float SHADOW_SHARE = 1.0 / 50.0;
+
+// Whether the shadows seen from a hit go into SHADOWS: a camera ray's
+// (depth 0), whose shadow edges may move by `pixels`, whatever each light
+// adds (a light too dim to move the pixel by a level, whose edge moves by
+// 0.002 pixel, is rare; weighing each light was measured no cheaper).
+bool shadows_recorded(int depth, float pixels, float stake)
+{
+    return at_stake(stake) && depth == 0 &&
+           pixels * float(SAMPLES) >= SHADOW_SHARE * frame.limits.y;
+}
+
+// Records that point light j shadows a hit whose shadows are recorded.
+void shadow_seen(inout uint sig, bool recorded, int j, bool shadowed)
+{
+    if (recorded && shadowed)
+        sig |= TP2_SIG_SHADOW_LOW << (j & 3);
 }

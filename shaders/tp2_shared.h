@@ -85,15 +85,20 @@
 #define TP2_SPEC_COUNT 18
 
 /* A pixel's signature word (shaders/signature.glsl, host/retrace.c): a
- * hash of the float pass's decisions and three bits. UNSURE: a decision
- * was within float's error of flipping; SENSITIVE: boundaries seen there
- * may move by a pixel's fraction that matters; STOPPED: the walk stopped
- * at its first UNSURE decision, so the hash and SENSITIVE cover only the
- * rays before it. */
+ * hash of the float pass's decisions, three bits and the camera rays'
+ * shadows. UNSURE: a decision was within float's error of flipping;
+ * SENSITIVE: boundaries seen there may move by a pixel's fraction that
+ * matters; STOPPED: the walk stopped at its first UNSURE decision, so the
+ * hash and SENSITIVE cover only the rays before it. SHADOWS: which point
+ * lights the camera rays' hits saw shadowed (a bit per class of lights,
+ * j % 4), where rounding may move their edges by a pixel's fraction that
+ * matters for shadows. */
 #define TP2_SIG_UNSURE 0x80000000u
 #define TP2_SIG_SENSITIVE 0x40000000u
 #define TP2_SIG_STOPPED 0x20000000u
-#define TP2_SIG_HASH 0x1fffffffu
+#define TP2_SIG_SHADOWS 0x1e000000u
+#define TP2_SIG_SHADOW_LOW 0x02000000u /* SHADOWS' lowest bit */
+#define TP2_SIG_HASH 0x01ffffffu
 
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0

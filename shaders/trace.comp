@@ -147,6 +147,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
+    bool recorded = shadows_recorded(ray.depth, hd.pixels, stake); // signature.glsl, SHADOWS
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
@@ -161,8 +162,10 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         int blocker = trace_scene(outside, d, back, dist, true, hint).object;
         bool shadowed = blocker >= 0;
         occluder = shadowed ? blocker : occluder;
-        if (!area_sample(j)) // each is a share of its light, turned per pixel
+        if (!area_sample(j)) { // each is a share of its light, turned per pixel
             decided(sig, uint(shadowed));
+            shadow_seen(sig, recorded, j, shadowed);
+        }
         if (!shadowed) {
             local += lit;
             tint += lit_tint;

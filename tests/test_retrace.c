@@ -1,8 +1,9 @@
 /* test_retrace.c: which pixels --precision auto traces again
  * (retrace_mark): UNSURE pixels; both sides of a boundary between hashes
  * when either side is SENSITIVE, across the band's edges too; nothing
- * where hashes differ but neither side is sensitive; a STOPPED pixel's
- * hash taken to differ from every neighbour's; and, on bands wide enough
+ * where hashes differ but neither side is sensitive; both sides where the
+ * camera rays' shadows differ, sensitive or not; a STOPPED pixel's hash
+ * taken to differ from every neighbour's; and, on bands wide enough
  * for the quick skip of uniform runs, the same marks as the rule read
  * pixel by pixel. */
 #include <stdbool.h>
@@ -27,6 +28,8 @@ static long block_order(uint32_t at)
 #define S RETRACE_SENSITIVE
 #define U RETRACE_UNSURE
 #define STOP (RETRACE_UNSURE | RETRACE_STOPPED)
+#define SH0 TP2_SIG_SHADOW_LOW        /* light class 0 shadowed */
+#define SH1 (TP2_SIG_SHADOW_LOW << 1) /* light class 1 shadowed */
 
 /* Marks band (N rows of W) with optional rows around it; the marks as a
  * W x N grid of 0/1 in out. Returns the count. */
@@ -68,7 +71,8 @@ static bool marked_by_rule(const uint32_t *above, const uint32_t *band, const ui
                 continue;
             uint32_t other = row[nx];
             bool differ = ((sig ^ other) & RETRACE_HASH) || ((sig | other) & RETRACE_STOPPED);
-            if (differ && ((sig | other) & RETRACE_SENSITIVE))
+            if ((differ && ((sig | other) & RETRACE_SENSITIVE)) ||
+                ((sig ^ other) & RETRACE_SHADOWS))
                 return true;
         }
     return false;
@@ -93,8 +97,9 @@ static void check_wide_band(unsigned seed, int width, bool rows_around)
         state = state * 1103515245u + 12345u;
         unsigned r = state >> 8;
         int x = (int)(r % (unsigned)width), y = (int)(r / (unsigned)width % (NN + 2));
-        static const uint32_t kinds[] = {6, 5 | S, 5 | U, 5 | STOP, 6 | S, 5 | STOP | S};
-        uint32_t word = kinds[(r >> 12) % 6];
+        static const uint32_t kinds[] = {6,        5 | S,    5 | U,     5 | STOP,
+                                         6 | S,    5 | SH0,  6 | SH1,   5 | STOP | S};
+        uint32_t word = kinds[(r >> 12) % 8];
         bool wide = (r >> 16) % 3 == 0;
         int w = wide ? 60 + (int)(r >> 18) % 100 : 1 + (int)(r >> 18) % 3;
         int h = wide ? 1 + (int)(r >> 20) % 4 : w;
@@ -200,6 +205,21 @@ int main(void)
                                     {0, 0, 1, 1, 1}, {0, 0, 1, 1, 1}};
     mark(NULL, stopped, NULL, got);
     expect_grid("stopped", got, stopped_want);
+
+    /* A shadow edge the camera sees: where the lights the camera rays saw
+     * shadowed differ, both sides are marked, sensitive or not, hashes
+     * equal or not; where they are the same, a hash boundary with nothing
+     * sensitive marks nothing. */
+    const uint32_t shadow[N][W] = {{3, 3, 3 | SH0, 3 | SH0, 3 | SH0},
+                                   {3, 3, 3, 4 | SH0, 4 | SH0},
+                                   {3 | SH1, 3 | SH1, 3 | SH1, 3 | SH1, 3 | SH1},
+                                   {3 | SH1, 3 | SH1, 3 | SH1, 3 | SH1, 3 | SH1}};
+    const int shadow_want[N][W] = {{0, 1, 1, 1, 0},
+                                   {1, 1, 1, 1, 1},
+                                   {1, 1, 1, 1, 1},
+                                   {0, 0, 0, 0, 0}};
+    mark(NULL, shadow, NULL, got);
+    expect_grid("shadow edges", got, shadow_want);
 
     static const int widths[] = {300, 256, 129, 65};
     for (unsigned seed = 0; seed < 256; seed++)
