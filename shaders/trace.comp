@@ -147,7 +147,6 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
-    bool recorded = shadows_recorded(ray.depth, hd.pixels, stake); // signature.glsl, SHADOWS
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
@@ -164,7 +163,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         occluder = shadowed ? blocker : occluder;
         if (!area_sample(j)) { // each is a share of its light, turned per pixel
             decided(sig, uint(shadowed));
-            shadow_seen(sig, recorded, j, shadowed);
+            shadow_seen(sig, ray.depth, j, shadowed);
         }
         if (!shadowed) {
             local += lit;
@@ -172,6 +171,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         }
     }
     color += weight * local;
+    shadows_kept(sig, ray.depth, hd.pixels, stake); // signature.glsl, SHADOWS
     // A steep texture or gradient moves with the hit point (signature.glsl).
     if (SMOOTH_PIGMENTS && at_stake(stake) &&
         stake * max(tint.r, max(tint.g, tint.b)) * pigment_slope(ids.y) * hd.along >=
