@@ -96,7 +96,7 @@ bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist,
     float a = 1.0 / (att.x + att.y * fd + att.z * fd * fd);
     rvec3 r = 2.0 * dot(sh.nf, l) * sh.nf - l;
     float spec = phong_power(float(dot(r, sh.view)), sh.fin.phong.w);
-    lit = a * color * (sh.fin.phong.y * ndotl * sh.pig + sh.fin.phong.z * spec);
     tint = a * color * sh.fin.phong.y * ndotl;
+    lit = tint * sh.pig + a * color * sh.fin.phong.z * spec;
     return true;
 }
