@@ -142,7 +142,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     ivec4 ids = object_ids(h.object);
     Finish fin = load_finish(ids.z);
     sh.fin = fin;
-    sh.pig = pigment_color(ids.y, sh.p, nf, at_stake(stake) ? hd.along : 0.0, sig);
+    sh.pig = pigment_color(ids.y, sh.p, nf, h.object, at_stake(stake) ? hd.along : 0.0, sig);
     vec3 tint = fin.phong.x * frame.ambient.rgb; // what multiplies the pigment
     vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
