@@ -3,7 +3,7 @@
 
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
                             [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
-                            [--reuse-exact]
+                            [--sphere-floor] [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
 every bounded kind, the quadric and a floor plane; mirrors and glass of
@@ -25,7 +25,10 @@ texture-mapped pigments (a 16 x 16 PPM of hard-edged blocks written
 beside the scenes) on some objects, fog, several samples per pixel, a
 thin lens, and an area light, each in some of the scenes. --reuse-exact
 keeps the exact images a run with --keep left in that folder (the slow
-part), to check another build against them."""
+part), to check another build against them. --sphere-floor makes the
+floor, where there is one, a sphere of radius 100-1000 whose top touches
+the plane it replaces (a course file's floor, ../shared/corpus/test05.txt),
+its radius from a stream of its own too."""
 import argparse
 import math
 import os
@@ -52,8 +55,9 @@ def write_texture(folder):
         f.write(b"P6\n16 16\n255\n" + rows)
 
 
-def make_scene(seed, extras=False):
-    """Scene text for seed (deterministic); extras: see --extras."""
+def make_scene(seed, extras=False, sphere_floor=False):
+    """Scene text for seed (deterministic); extras and sphere_floor: see
+    --extras and --sphere-floor."""
     r = random.Random(seed)
     scale = r.choice([1, 1, 1, 1e-3, 1e2, 1e4])
     off = [r.choice([0, 0, r.uniform(-1, 1) * 1e4 * scale]) for _ in range(3)]
@@ -138,7 +142,11 @@ def make_scene(seed, extras=False):
                 faces.append(f"{n[0]:.9g} {n[1]:.9g} {n[2]:.9g} {d:.9g}")
             add("\n".join(faces))
     if r.random() < 0.8:
-        add(f"plane 0 1 0 {1.5 * scale - off[1]:.9g}")
+        if sphere_floor:
+            radius = random.Random(seed + 2 * 10 ** 6).choice([100, 300, 1000])
+            add(f"sphere {p(0, -1.5 - radius, 0)} {length(radius)}")
+        else:
+            add(f"plane 0 1 0 {1.5 * scale - off[1]:.9g}")
     directives = []
     if extras:
         directives = add_extras(random.Random(seed + 10 ** 6), scale, off, dist, nl,
@@ -207,6 +215,8 @@ def main():
                     help="keep exact images already in --keep's folder (same seeds and size)")
     ap.add_argument("--extras", action="store_true",
                     help="textures, gradients, fog, samples, lens and area lights too")
+    ap.add_argument("--sphere-floor", action="store_true",
+                    help="the floor a sphere of radius 100-1000 touching the plane's place")
     args = ap.parse_args()
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
     os.makedirs(folder, exist_ok=True)
@@ -217,7 +227,7 @@ def main():
     for seed in seeds:
         scene = os.path.join(folder, f"s{seed}.txt")
         with open(scene, "w") as f:
-            f.write(make_scene(seed, args.extras))
+            f.write(make_scene(seed, args.extras, args.sphere_floor))
         auto, exact = (os.path.join(folder, f"{k}{seed}.pfm") for k in ("auto", "exact"))
         render(args.tp2, scene, auto, args.size, [])
         if not (args.reuse_exact and os.path.exists(exact)):
