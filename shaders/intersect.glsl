@@ -11,6 +11,7 @@ struct Hit {
     int part;   // which part of it (a face, a cap): shapes.glsl
     real next;  // under SIGNATURES: the nearest other crossing tested (signature.glsl),
     int next_object; // and its object
+    float graze; // and how near the ray passed a sphere's surface (shapes.glsl)
 };
 
 // The surface a ray starts on, which rounding must not let it hit again
@@ -98,7 +99,7 @@ rvec3 safe_inverse(rvec3 d)
 // or popping there too, was no better).
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first)
 {
-    Hit h = Hit(tmax, -1, 0, tmax, -1);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, 3.0e38);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);
@@ -119,9 +120,9 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         bool enter = false;
         if (i < end) {
             int part;
-            real t = hit_object(i, o, d, i == start.object, start.inward, part);
+            real t = hit_object(i, o, d, i == start.object, start.inward, part, h.graze);
             if (t < h.t) {
-                h = Hit(t, i, part, h.t, h.object);
+                h = Hit(t, i, part, h.t, h.object, h.graze);
                 if (any_hit)
                     break;
             } else if (SIGNATURES && t < h.next) {

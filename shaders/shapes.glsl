@@ -91,7 +91,11 @@ real convex_hit(Span s, bool on, bool inward, out int part)
 // The discriminant comes from the ray's closest approach to the center
 // rather than b^2 - c, which cancels catastrophically for far-away
 // spheres; the near root from c / q (no subtraction of near equals).
-real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
+// Under SIGNATURES, graze becomes at most how near the ray passes the
+// surface ahead of o, less this test's own rounding (signature.glsl,
+// shadow_grazes); not the surface it starts on, which it leaves at the
+// angle its |n.d| test doubts.
+real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward, inout float graze)
 {
     if (on && !inward)
         return NO_HIT;
@@ -101,6 +105,9 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward)
     real b = dot(oc, d);
     rvec3 closest = oc - b * d;
     real disc = r * r - dot(closest, closest);
+    if (SIGNATURES && !on && b < 0.0)
+        graze = min(graze, float(abs(disc) / (2.0 * r)) -
+                               2.0 * ROUNDING * float(max_abs(oc) + r));
     if (disc < 0.0)
         return NO_HIT;
     real q = -b - (b < 0.0 ? -sqrt(disc) : sqrt(disc));
@@ -507,13 +514,15 @@ int shape_of(int i)
     return object_ids(i).x;
 }
 
-// Object i's nearest t > 0 and part (see the top of this file).
-real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+// Object i's nearest t > 0 and part (see the top of this file); graze:
+// see hit_sphere.
+real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part,
+                inout float graze)
 {
     part = 0;
     int kind = shape_of(i);
     if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
-        return hit_sphere(i, o, d, on, inward);
+        return hit_sphere(i, o, d, on, inward, graze);
     if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
         return hit_plane(i, o, d, on);
 #ifdef TP2_FACETED // the builds with faces (see CMakeLists.txt)

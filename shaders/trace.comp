@@ -147,6 +147,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
+    float graze = 3.0e38; // how near a shadow ray passed a sphere (shapes.glsl)
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
@@ -158,12 +159,14 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         // one object: the last sample's occluder is tested first. (Any
         // occluder answers the same; for point lights this was no faster.)
         int hint = OCCLUDER_HINT && area_sample(j) ? occluder : -1;
-        int blocker = trace_scene(outside, d, back, dist, true, hint).object;
+        Hit shadow = trace_scene(outside, d, back, dist, true, hint);
+        int blocker = shadow.object;
         bool shadowed = blocker >= 0;
         occluder = shadowed ? blocker : occluder;
         if (!area_sample(j)) { // each is a share of its light, turned per pixel
             decided(sig, uint(shadowed));
             shadow_seen(sig, ray.depth, j, shadowed);
+            graze = min(graze, shadow.graze);
         }
         if (!shadowed) {
             local += lit;
@@ -172,6 +175,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     }
     color += weight * local;
     shadows_kept(sig, ray.depth, hd.pixels, stake); // signature.glsl, SHADOWS
+    shadow_grazes(sig, graze, ray.depth, hd, sizes, stake);
     // A steep texture or gradient moves with the hit point (signature.glsl).
     if (SMOOTH_PIGMENTS && at_stake(stake) &&
         stake * max(tint.r, max(tint.g, tint.b)) * pigment_slope(ids.y) * hd.along >=
