@@ -56,7 +56,12 @@ void decided(inout uint sig, uint choice)
 // carried to its origin; y how far its direction may be off from the
 // rounding at its origin (radians, not yet in pixels); z and w the
 // footprint: its width across the ray at the origin and how fast that
-// grows with distance (radians; negative while it converges).
+// grows with distance (radians; negative while it converges). y's sign
+// says whether the doubt is still the ray's own rounding (own_rounding):
+// positive for camera rays and rays mirrored by surfaces flat across
+// their footprint, negative once a curved mirror or a lens has spread or
+// focused the beam, whose first-order map then carries a bound far above
+// the error.
 
 // What is known at a hit at distance t: how far, in pixels, the hit point
 // may be off; how far along the surface (spread by a grazing ray: cosine
@@ -74,10 +79,10 @@ HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
     float grazing = 1.0 / max(cosine, 1e-6);
     h.width = abs(doubt.z + doubt.w * t);
     h.width_along = h.width * grazing;
-    h.pixels = doubt.x + (doubt.y * t + ROUNDING * (scale + t)) / h.width;
+    h.pixels = doubt.x + (abs(doubt.y) * t + ROUNDING * (scale + t)) / h.width;
     h.along = h.pixels * h.width_along;
     h.turn = ROUNDING * (1.0 + abs(bend) * scale);
-    h.angle = h.pixels * (abs(doubt.w) + abs(bend) * h.width_along) + doubt.y + h.turn;
+    h.angle = h.pixels * (abs(doubt.w) + abs(bend) * h.width_along) + abs(doubt.y) + h.turn;
     return h;
 }
 
@@ -99,7 +104,22 @@ bool nearer_unsure(float margin, HitDoubt h, float t, float scale, bool both_fla
 // How far, in pixels, boundaries beyond the ray's origin may move.
 float far_pixels(vec4 doubt)
 {
-    return doubt.x + (doubt.y + ROUNDING) / abs(doubt.w);
+    return doubt.x + (abs(doubt.y) + ROUNDING) / abs(doubt.w);
+}
+
+// Whether a doubt is still the ray's own rounding (y's sign bit, so that
+// a half's zero keeps it).
+bool own_rounding(vec4 doubt)
+{
+    return (floatBitsToUint(doubt.y) & 0x80000000u) == 0u;
+}
+
+// A mirrored ray's direction doubt y (positive), signed as own_rounding
+// says.
+float owned(float y, vec4 doubt, HitDoubt h, vec2 curving)
+{
+    bool gentle = 2.0 * max(abs(curving.x), abs(curving.y)) * h.width_along <= abs(doubt.w);
+    return own_rounding(doubt) && gentle ? y : -y;
 }
 
 // The doubt of a ray leaving the hit, mirrored or refracted (eta the ratio
@@ -110,15 +130,21 @@ float far_pixels(vec4 doubt)
 // mirror adds twice the normal's turn over the footprint to the beam's
 // spread, a refraction bends it by the paraxial law
 // (n'u' = nu - h (n' - n) / R).
+// A mirrored ray's doubt stays its own rounding (y > 0) where the mirror
+// turns the beam by no more than its own spread across the footprint (a
+// floor that is a sphere of radius 1000, not a ball); a refracted ray's
+// never does (flat glass kept it too, and marked 1.4 times box.txt's
+// pixels at 1920 x 1080, none of which then came out different).
 vec4 mirrored_doubt(vec4 doubt, HitDoubt h, vec2 curving)
 {
-    return vec4(h.pixels, 2.0 * h.turn, h.width, doubt.w + 2.0 * curving.x * h.width_along);
+    return vec4(h.pixels, owned(2.0 * h.turn, doubt, h, curving), h.width,
+                doubt.w + 2.0 * curving.x * h.width_along);
 }
 
 vec4 refracted_doubt(vec4 doubt, HitDoubt h, vec2 curving, float eta, float cos_t)
 {
     float c = eta > 1.0 ? curving.x : curving.y;
-    return vec4(h.pixels, (1.0 + eta) * h.turn / max(cos_t, 1e-3), h.width,
+    return vec4(h.pixels, -(1.0 + eta) * h.turn / max(cos_t, 1e-3), h.width,
                 eta * doubt.w + (eta - 1.0) * c * h.width_along);
 }
 
@@ -154,10 +180,20 @@ bool at_stake(float stake)
 // With SAMPLES rays per pixel (stratified, or spread by a lens) a boundary
 // passes near SAMPLES times as many rays, so it counts from a SAMPLES-th
 // of frame.limits.y (a flip of one of them weighs a SAMPLES-th, which
-// `stake` says).
-void seen(inout uint sig, float pixels, float stake)
+// `stake` says). A ray whose doubt is its own rounding (own_rounding)
+// counts from OWN_SHARE of that: its doubt is close to its error, which
+// in a scene far from 0 is a share of every footprint, and moves long
+// edges by a few hundredths of a pixel, flipping that share of the
+// pixels along them (a scene 1e4 units from 0 seen in a mirror floor
+// had 17 pixels off by more than 8 levels at 400 x 300: README.TXT
+// "Accuracy"). Deeper doubts carry the beam's spread through curved
+// surfaces and stay at the tenth.
+const float OWN_SHARE = 1.0 / 10.0;
+
+void seen(inout uint sig, float pixels, float stake, vec4 doubt)
 {
-    if (at_stake(stake) && pixels * float(SAMPLES) >= frame.limits.y)
+    float share = own_rounding(doubt) ? OWN_SHARE : 1.0;
+    if (at_stake(stake) && pixels * float(SAMPLES) >= share * frame.limits.y)
         sig |= SENSITIVE;
 }
 
