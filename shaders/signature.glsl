@@ -68,10 +68,22 @@ void decided(inout uint sig, uint choice)
 // = |n.d|); how far the angle of incidence may be off; the footprint's
 // width across the ray and along the surface; and the rounding of the
 // normal computed there (scale: the size of the numbers that computed the
-// hit; bend: the largest magnitude of the surface's curvature).
+// hit; bend: the largest magnitude of the surface's curvature). own: how
+// far, in pixels, by what is known to be close to float's error (seen):
+// all of it while the doubt is the ray's own rounding, else the hit's
+// fresh rounding alone, over a footprint no narrower than a camera
+// pixel's at that distance (a lens's focus narrows the model's footprint
+// far more than it shrinks errors).
 struct HitDoubt {
-    float pixels, along, angle, width, width_along, turn;
+    float pixels, along, angle, width, width_along, turn, own;
 };
+
+// Whether a doubt is still the ray's own rounding (y's sign bit, so that
+// a half's zero keeps it).
+bool own_rounding(vec4 doubt)
+{
+    return (floatBitsToUint(doubt.y) & 0x80000000u) == 0u;
+}
 
 HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
 {
@@ -83,6 +95,8 @@ HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
     h.along = h.pixels * h.width_along;
     h.turn = ROUNDING * (1.0 + abs(bend) * scale);
     h.angle = h.pixels * (abs(doubt.w) + abs(bend) * h.width_along) + abs(doubt.y) + h.turn;
+    h.own = own_rounding(doubt) ? h.pixels
+                                : ROUNDING * (scale + t) / max(h.width, frame.limits.z * t);
     return h;
 }
 
@@ -107,11 +121,10 @@ float far_pixels(vec4 doubt)
     return doubt.x + (abs(doubt.y) + ROUNDING) / abs(doubt.w);
 }
 
-// Whether a doubt is still the ray's own rounding (y's sign bit, so that
-// a half's zero keeps it).
-bool own_rounding(vec4 doubt)
+// The same for boundaries beyond: HitDoubt.own's share of far_pixels.
+float own_far_pixels(vec4 doubt)
 {
-    return (floatBitsToUint(doubt.y) & 0x80000000u) == 0u;
+    return own_rounding(doubt) ? far_pixels(doubt) : ROUNDING / max(abs(doubt.w), frame.limits.z);
 }
 
 // A mirrored ray's direction doubt y (positive), signed as own_rounding
@@ -180,20 +193,20 @@ bool at_stake(float stake)
 // With SAMPLES rays per pixel (stratified, or spread by a lens) a boundary
 // passes near SAMPLES times as many rays, so it counts from a SAMPLES-th
 // of frame.limits.y (a flip of one of them weighs a SAMPLES-th, which
-// `stake` says). A ray whose doubt is its own rounding (own_rounding)
-// counts from OWN_SHARE of that: its doubt is close to its error, which
-// in a scene far from 0 is a share of every footprint, and moves long
-// edges by a few hundredths of a pixel, flipping that share of the
-// pixels along them (a scene 1e4 units from 0 seen in a mirror floor
-// had 17 pixels off by more than 8 levels at 400 x 300: README.TXT
-// "Accuracy"). Deeper doubts carry the beam's spread through curved
-// surfaces and stay at the tenth.
+// `stake` says). What is known to be close to float's error (`own`: a
+// ray's own rounding, a hit's fresh rounding; HitDoubt.own) counts from
+// OWN_SHARE of that. Far from 0, or on a sphere of radius 1e7, that
+// error is a share of every footprint and moves long edges by a few
+// hundredths of a pixel, flipping that share of the pixels along them
+// (random scenes with 17 and 14 pixels off by more than 8 levels at 400
+// x 300: README.TXT "Accuracy"). The rest of a doubt carried through
+// curved mirrors and lenses holds the beam's spread, far above the
+// error, and counts from the tenth.
 const float OWN_SHARE = 1.0 / 10.0;
 
-void seen(inout uint sig, float pixels, float stake, vec4 doubt)
+void seen(inout uint sig, float pixels, float own, float stake)
 {
-    float share = own_rounding(doubt) ? OWN_SHARE : 1.0;
-    if (at_stake(stake) && pixels * float(SAMPLES) >= share * frame.limits.y)
+    if (at_stake(stake) && max(pixels, own / OWN_SHARE) * float(SAMPLES) >= frame.limits.y)
         sig |= SENSITIVE;
 }
 

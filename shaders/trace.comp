@@ -97,7 +97,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     float stake = weight / float(SAMPLES); // what a flip here can change
     decided(sig, uint(h.object));
     if (h.object < 0) { // boundaries beyond move with the direction (signature.glsl)
-        seen(sig, far_pixels(doubt), stake, doubt);
+        seen(sig, far_pixels(doubt), own_far_pixels(doubt), stake);
         color += weight * (HAS_FOG ? frame.fog.rgb : gray);
         return 0;
     }
@@ -119,7 +119,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     float bend = max(abs(curving.x), abs(curving.y));
     float sizes = hit_rounding(h.object) * float(scale + max_abs(ray.origin));
     HitDoubt hd = doubt_at(doubt, float(h.t), sizes, cosine, bend);
-    seen(sig, max(hd.pixels, far_pixels(doubt)), stake, doubt);
+    seen(sig, max(hd.pixels, far_pixels(doubt)), max(hd.own, own_far_pixels(doubt)), stake);
     if (ray.depth == 0)
         shifted(sig, hd.pixels, stake);
     decided(sig, uint(h.part));
