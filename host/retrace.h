@@ -23,8 +23,9 @@
  * different hashes is traced again where rounding may move it by at least
  * RETRACE_PIXELS of a pixel (to move it across a pixel's center it would
  * have to pass within that distance of it; with S samples per pixel,
- * RETRACE_PIXELS / S, and a tenth of that where the ray's doubt is its
- * own rounding: signature.glsl's seen); a decision counts where
+ * RETRACE_PIXELS / S, and a tenth of that where rounding known to be
+ * close to float's error moves it, a ray's own or a hit's fresh
+ * rounding: signature.glsl's seen); a decision counts where
  * flipping it could change the pixel by RETRACE_STAKE or more (one 8-bit
  * level, for radiance within [0, 1]). README.TXT "Accuracy" has the
  * measurements that chose them. */
