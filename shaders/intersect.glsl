@@ -4,6 +4,7 @@
 // shapes.glsl.
 
 const real NO_HIT = real(3.0e38);
+const float NO_GRAZE = 3.0e38; // Hit.graze before any sphere was passed
 
 struct Hit {
     real t;
@@ -99,7 +100,7 @@ rvec3 safe_inverse(rvec3 d)
 // or popping there too, was no better).
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first)
 {
-    Hit h = Hit(tmax, -1, 0, tmax, -1, 3.0e38);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, NO_GRAZE);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);

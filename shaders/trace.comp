@@ -147,7 +147,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     vec3 local = tint * sh.pig;
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
-    float graze = 3.0e38; // how near a shadow ray passed a sphere (shapes.glsl)
+    float graze = NO_GRAZE; // how near a shadow ray passed a sphere (shapes.glsl)
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
