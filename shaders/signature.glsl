@@ -280,3 +280,30 @@ void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float siz
     if (at_stake(stake) && graze < 2.0 * ((depth == 0 ? h.along : 0.0) + ROUNDING * sizes))
         sig |= UNSURE;
 }
+
+// The arealight's samples are turned per pixel (shade.glsl, area_sample),
+// so their shadow edges cannot be found between neighbours as the point
+// lights' are. A penumbra, where some of a hit's samples are shadowed and
+// some not, is where those edges lie, one per sample, and rounding moves
+// each as it moves a point light's: a camera ray's hit there is UNSURE
+// where that may be SHADOW_SHARE of what counts (as SHADOWS), a deeper
+// ray's where its known rounding (HitDoubt.own) may be OWN_SHARE of it
+// (as seen). A flip weighs the most one sample adds. Far from 0, where
+// float's rounding moves edges by hundredths of a pixel, penumbras were
+// left 2-5 levels off at a scattered few pixels in a hundred (random
+// scene 556 of README.TXT "Accuracy").
+// area_share: what sample `lit` adds to the two halves of penumbra, lit
+// or shadowed.
+vec2 area_share(vec3 lit, bool shadowed)
+{
+    float most = max(lit.r, max(lit.g, lit.b));
+    return shadowed ? vec2(0.0, most) : vec2(most, 0.0);
+}
+
+void penumbra_seen(inout uint sig, int depth, vec2 penumbra, HitDoubt h, float stake)
+{
+    float moved = depth == 0 ? h.pixels / SHADOW_SHARE : h.own / OWN_SHARE;
+    if (at_stake(stake * max(penumbra.x, penumbra.y)) && min(penumbra.x, penumbra.y) > 0.0 &&
+        moved * float(SAMPLES) >= frame.limits.y)
+        sig |= UNSURE;
+}

@@ -148,6 +148,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
     float graze = NO_GRAZE; // how near a shadow ray passed a sphere (shapes.glsl)
+    vec2 penumbra = vec2(0.0); // the arealight's samples: the most one lit, one shadowed adds
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
         real dist;
@@ -167,6 +168,8 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
             decided(sig, uint(shadowed));
             shadow_seen(sig, ray.depth, j, shadowed);
             graze = min(graze, shadow.graze);
+        } else {
+            penumbra = max(penumbra, area_share(lit, shadowed));
         }
         if (!shadowed) {
             local += lit;
@@ -176,6 +179,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     color += weight * local;
     shadows_kept(sig, ray.depth, hd.pixels, stake); // signature.glsl, SHADOWS
     shadow_grazes(sig, graze, ray.depth, hd, sizes, stake);
+    penumbra_seen(sig, ray.depth, penumbra, hd, stake);
     // A steep texture or gradient moves with the hit point (signature.glsl).
     if (SMOOTH_PIGMENTS && at_stake(stake) &&
         stake * max(tint.r, max(tint.g, tint.b)) * pigment_slope(ids.y) * hd.along >=
