@@ -8,9 +8,10 @@
 // (render.c reads it, retrace.c marks from it): a 25-bit hash of its
 // decisions, three bits and its camera rays' shadows. UNSURE: a decision
 // with a local margin (a checker cell face, the sign of n.d, total
-// internal reflection) was within its doubt of flipping, or a texture's
+// internal reflection) was within its doubt of flipping, a texture's
 // or gradient's color may slide by a level with the hit point
-// (trace.comp, pigment_slope).
+// (trace.comp, pigment_slope), or an area light's penumbra may
+// (penumbra_seen, at the end).
 // SENSITIVE: a boundary seen there may move by frame.limits.y pixels or
 // more. A pixel is traced again in double where it is UNSURE, or where
 // its hash differs from a neighbour's and one of the two is SENSITIVE:
