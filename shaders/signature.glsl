@@ -282,6 +282,14 @@ void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float siz
         sig |= UNSURE;
 }
 
+// What area sample `lit` adds, as the lit or the shadowed half of a
+// penumbra (penumbra_seen takes the most of each over the samples).
+vec2 area_share(vec3 lit, bool shadowed)
+{
+    float most = max(lit.r, max(lit.g, lit.b));
+    return shadowed ? vec2(0.0, most) : vec2(most, 0.0);
+}
+
 // The arealight's samples are turned per pixel (shade.glsl, area_sample),
 // so their shadow edges cannot be found between neighbours as the point
 // lights' are. A penumbra, where some of a hit's samples are shadowed and
@@ -293,14 +301,6 @@ void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float siz
 // float's rounding moves edges by hundredths of a pixel, penumbras were
 // left 2-5 levels off at a scattered few pixels in a hundred (random
 // scene 556 of README.TXT "Accuracy").
-// area_share: what sample `lit` adds to the two halves of penumbra, lit
-// or shadowed.
-vec2 area_share(vec3 lit, bool shadowed)
-{
-    float most = max(lit.r, max(lit.g, lit.b));
-    return shadowed ? vec2(0.0, most) : vec2(most, 0.0);
-}
-
 void penumbra_seen(inout uint sig, int depth, vec2 penumbra, HitDoubt h, float stake)
 {
     float moved = depth == 0 ? h.pixels / SHADOW_SHARE : h.own / OWN_SHARE;
