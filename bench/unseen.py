@@ -3,7 +3,7 @@
 
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
                             [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
-                            [--sphere-floor] [--reuse-exact]
+                            [--sphere-floor] [--open] [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
 every bounded kind, the quadric and a floor plane; mirrors and glass of
@@ -28,7 +28,13 @@ keeps the exact images a run with --keep left in that folder (the slow
 part), to check another build against them. --sphere-floor makes the
 floor, where there is one, a sphere of radius 100-1000 whose top touches
 the plane it replaces (a course file's floor, ../shared/corpus/test05.txt),
-its radius from a stream of its own too."""
+its radius from a stream of its own too. --open adds, from a stream of its
+own, the shapes the others lack: the floor plane written as a one-face
+polyhedron (a half-space, as the original course's files write floors),
+an unbounded polyhedron (a three-face wedge or a five-face open box, open
+along a random direction) and a triangle mesh (a lumpy ball or a wavy
+sheet of 170-840 triangles, written as unseen-mesh-SEED.obj beside the
+scene)."""
 import argparse
 import math
 import os
@@ -55,9 +61,10 @@ def write_texture(folder):
         f.write(b"P6\n16 16\n255\n" + rows)
 
 
-def make_scene(seed, extras=False, sphere_floor=False):
-    """Scene text for seed (deterministic); extras and sphere_floor: see
-    --extras and --sphere-floor."""
+def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=None):
+    """Scene text for seed (deterministic); extras, sphere_floor and
+    open_shapes: see --extras, --sphere-floor and --open. The files the
+    scene names (a mesh's OBJ) go into `files`, name -> text."""
     r = random.Random(seed)
     scale = r.choice([1, 1, 1, 1e-3, 1e2, 1e4])
     off = [r.choice([0, 0, r.uniform(-1, 1) * 1e4 * scale]) for _ in range(3)]
@@ -147,6 +154,9 @@ def make_scene(seed, extras=False, sphere_floor=False):
             add(f"sphere {p(0, -1.5 - radius, 0)} {length(radius)}")
         else:
             add(f"plane 0 1 0 {1.5 * scale - off[1]:.9g}")
+    if open_shapes:
+        add_open_shapes(random.Random(seed + 3 * 10 ** 6), seed, scale, off, len(pigments),
+                        len(finishes), objects, files if files is not None else {})
     directives = []
     if extras:
         directives = add_extras(random.Random(seed + 10 ** 6), scale, off, dist, nl,
@@ -154,6 +164,88 @@ def make_scene(seed, extras=False, sphere_floor=False):
     return "\n".join(head + lights + ["", str(len(pigments))] + pigments +
                      ["", str(len(finishes))] + finishes +
                      ["", str(len(objects))] + objects + directives) + "\n"
+
+
+def add_open_shapes(r, seed, scale, off, npigments, nfinishes, objects, files):
+    """--open: unbounded polyhedra and a mesh (objects changed in place,
+    the mesh's OBJ text put into files)."""
+    def at(v):
+        return tuple(v[i] * scale + off[i] for i in range(3))
+
+    def unit(v):
+        n = math.sqrt(sum(x * x for x in v))
+        return tuple(x / n for x in v)
+
+    def cross(a, b):
+        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+    def face(n, point):  # the half-space behind n through point (scene units)
+        d = -sum(n[i] * point[i] for i in range(3))
+        return f"{n[0]:.9g} {n[1]:.9g} {n[2]:.9g} {d:.9g}"
+
+    def head():
+        return f"{r.randrange(npigments)} {r.randrange(nfinishes)} "
+
+    for i, text in enumerate(objects):  # the floor plane as a half-space
+        kind = text.split()[2]
+        if kind == "plane" and r.random() < 0.7:
+            objects[i] = text.replace("plane", "polyhedron 1\n", 1)
+    # An unbounded polyhedron around c, open along axis: a wedge of three
+    # faces or a box of five (one end left open).
+    c = at((r.uniform(-3, 3), r.uniform(-1, 2), r.uniform(-3, 3)))
+    axis = unit([r.uniform(-1, 1) for _ in range(3)])
+    side = unit(cross(axis, unit([r.uniform(-1, 1) for _ in range(3)])))
+    other = cross(axis, side)
+    w = r.uniform(0.3, 1.5) * scale
+    if r.random() < 0.5:
+        normals = [unit(tuple(math.cos(a) * side[k] + math.sin(a) * other[k] for k in range(3)))
+                   for a in (0.3, 2.4, 4.3)]
+        faces = [face(n, tuple(c[k] + w * n[k] for k in range(3))) for n in normals]
+    else:
+        normals = [side, other, tuple(-x for x in side), tuple(-x for x in other),
+                   tuple(-x for x in axis)]
+        faces = [face(n, tuple(c[k] + w * n[k] for k in range(3))) for n in normals]
+    objects.append(head() + f"polyhedron {len(faces)}\n" + "\n".join(faces))
+    # A mesh: a lumpy ball (closed) or a wavy sheet (open, seen from both sides).
+    name = f"unseen-mesh-{seed}.obj"
+    mc = (r.uniform(-3, 3), r.uniform(-0.5, 2), r.uniform(-3, 3))
+    s = r.uniform(0.5, 2)
+    lines = []
+    if r.random() < 0.5:
+        u, v, k, m = r.randint(12, 30), r.randint(8, 15), r.randint(2, 6), r.randint(1, 4)
+        for j in range(1, v):
+            th = math.pi * j / v
+            for i in range(u):
+                ph = 2 * math.pi * i / u
+                rad = s * (1 + 0.3 * math.sin(k * ph) * math.sin(m * th))
+                lines.append("v %.9g %.9g %.9g" % at((mc[0] + rad * math.sin(th) * math.cos(ph),
+                                                       mc[1] + rad * math.cos(th),
+                                                       mc[2] + rad * math.sin(th) * math.sin(ph))))
+        lines.append("v %.9g %.9g %.9g" % at((mc[0], mc[1] + s, mc[2])))
+        lines.append("v %.9g %.9g %.9g" % at((mc[0], mc[1] - s, mc[2])))
+        top, bottom = (v - 1) * u + 1, (v - 1) * u + 2
+
+        def vi(j, i):  # ring j (0..v-2), column i
+            return j * u + i % u + 1
+        for i in range(u):
+            lines.append(f"f {top} {vi(0, i + 1)} {vi(0, i)}")
+            lines.append(f"f {bottom} {vi(v - 2, i)} {vi(v - 2, i + 1)}")
+            for j in range(v - 2):
+                lines.append(f"f {vi(j, i)} {vi(j, i + 1)} {vi(j + 1, i + 1)} {vi(j + 1, i)}")
+    else:
+        n, amp, f = r.randint(10, 20), r.uniform(0.05, 0.5), r.uniform(1, 4)
+        tilt = r.uniform(-0.8, 0.8)
+        for j in range(n + 1):
+            for i in range(n + 1):
+                x, z = s * (2 * i / n - 1), s * (2 * j / n - 1)
+                y = amp * s * math.sin(f * x / s) * math.cos(f * z / s) + tilt * x
+                lines.append("v %.9g %.9g %.9g" % at((mc[0] + x, mc[1] + y, mc[2] + z)))
+        for j in range(n):
+            for i in range(n):
+                a = j * (n + 1) + i + 1
+                lines.append(f"f {a} {a + n + 1} {a + n + 2} {a + 1}")
+    files[name] = "\n".join(lines) + "\n"
+    objects.append(head() + f"mesh {name}")
 
 
 def add_extras(r, scale, off, dist, nlights, pigments, objects):
@@ -217,6 +309,8 @@ def main():
                     help="textures, gradients, fog, samples, lens and area lights too")
     ap.add_argument("--sphere-floor", action="store_true",
                     help="the floor a sphere of radius 100-1000 touching the plane's place")
+    ap.add_argument("--open", action="store_true",
+                    help="half-space floors, unbounded polyhedra and a mesh too")
     args = ap.parse_args()
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
     os.makedirs(folder, exist_ok=True)
@@ -226,8 +320,12 @@ def main():
     seeds = seeds_of(args.seeds)
     for seed in seeds:
         scene = os.path.join(folder, f"s{seed}.txt")
+        files = {}
         with open(scene, "w") as f:
-            f.write(make_scene(seed, args.extras, args.sphere_floor))
+            f.write(make_scene(seed, args.extras, args.sphere_floor, args.open, files))
+        for name, text in files.items():
+            with open(os.path.join(folder, name), "w") as f:
+                f.write(text)
         auto, exact = (os.path.join(folder, f"{k}{seed}.pfm") for k in ("auto", "exact"))
         render(args.tp2, scene, auto, args.size, [])
         if not (args.reuse_exact and os.path.exists(exact)):
