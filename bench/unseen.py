@@ -43,6 +43,8 @@ import subprocess
 import sys
 import tempfile
 
+from mesh import cross, unit  # bench/mesh.py, beside this file
+
 MIN_WITHIN1 = "0.9995"
 MAX_BAD8 = "10"
 
@@ -156,7 +158,7 @@ def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=
             add(f"plane 0 1 0 {1.5 * scale - off[1]:.9g}")
     if open_shapes:
         add_open_shapes(random.Random(seed + 3 * 10 ** 6), seed, scale, off, len(pigments),
-                        len(finishes), objects, files if files is not None else {})
+                        len(finishes), objects, {} if files is None else files)
     directives = []
     if extras:
         directives = add_extras(random.Random(seed + 10 ** 6), scale, off, dist, nl,
@@ -169,29 +171,29 @@ def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=
 def add_open_shapes(r, seed, scale, off, npigments, nfinishes, objects, files):
     """--open: unbounded polyhedra and a mesh (objects changed in place,
     the mesh's OBJ text put into files)."""
-    def at(v):
+    def at(v):  # scene units, scaled and moved like every object
         return tuple(v[i] * scale + off[i] for i in range(3))
-
-    def unit(v):
-        n = math.sqrt(sum(x * x for x in v))
-        return tuple(x / n for x in v)
-
-    def cross(a, b):
-        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-    def face(n, point):  # the half-space behind n through point (scene units)
-        d = -sum(n[i] * point[i] for i in range(3))
-        return f"{n[0]:.9g} {n[1]:.9g} {n[2]:.9g} {d:.9g}"
 
     def head():
         return f"{r.randrange(npigments)} {r.randrange(nfinishes)} "
 
     for i, text in enumerate(objects):  # the floor plane as a half-space
-        kind = text.split()[2]
-        if kind == "plane" and r.random() < 0.7:
+        if text.split()[2] == "plane" and r.random() < 0.7:
             objects[i] = text.replace("plane", "polyhedron 1\n", 1)
-    # An unbounded polyhedron around c, open along axis: a wedge of three
-    # faces or a box of five (one end left open).
+    faces = open_polyhedron(r, at, scale)
+    objects.append(head() + f"polyhedron {len(faces)}\n" + "\n".join(faces))
+    name = f"unseen-mesh-{seed}.obj"
+    center = (r.uniform(-3, 3), r.uniform(-0.5, 2), r.uniform(-3, 3))
+    size = r.uniform(0.5, 2)
+    write_mesh = lumpy_ball if r.random() < 0.5 else wavy_sheet
+    files[name] = "\n".join(write_mesh(r, at, center, size)) + "\n"
+    objects.append(head() + f"mesh {name}")
+
+
+def open_polyhedron(r, at, scale):
+    """The faces of an unbounded polyhedron around a random point, open
+    along a random axis: a wedge of three faces or a box of five (one end
+    left open)."""
     c = at((r.uniform(-3, 3), r.uniform(-1, 2), r.uniform(-3, 3)))
     axis = unit([r.uniform(-1, 1) for _ in range(3)])
     side = unit(cross(axis, unit([r.uniform(-1, 1) for _ in range(3)])))
@@ -200,52 +202,62 @@ def add_open_shapes(r, seed, scale, off, npigments, nfinishes, objects, files):
     if r.random() < 0.5:
         normals = [unit(tuple(math.cos(a) * side[k] + math.sin(a) * other[k] for k in range(3)))
                    for a in (0.3, 2.4, 4.3)]
-        faces = [face(n, tuple(c[k] + w * n[k] for k in range(3))) for n in normals]
     else:
         normals = [side, other, tuple(-x for x in side), tuple(-x for x in other),
                    tuple(-x for x in axis)]
-        faces = [face(n, tuple(c[k] + w * n[k] for k in range(3))) for n in normals]
-    objects.append(head() + f"polyhedron {len(faces)}\n" + "\n".join(faces))
-    # A mesh: a lumpy ball (closed) or a wavy sheet (open, seen from both sides).
-    name = f"unseen-mesh-{seed}.obj"
-    mc = (r.uniform(-3, 3), r.uniform(-0.5, 2), r.uniform(-3, 3))
-    s = r.uniform(0.5, 2)
-    lines = []
-    if r.random() < 0.5:
-        u, v, k, m = r.randint(12, 30), r.randint(8, 15), r.randint(2, 6), r.randint(1, 4)
-        for j in range(1, v):
-            th = math.pi * j / v
-            for i in range(u):
-                ph = 2 * math.pi * i / u
-                rad = s * (1 + 0.3 * math.sin(k * ph) * math.sin(m * th))
-                lines.append("v %.9g %.9g %.9g" % at((mc[0] + rad * math.sin(th) * math.cos(ph),
-                                                       mc[1] + rad * math.cos(th),
-                                                       mc[2] + rad * math.sin(th) * math.sin(ph))))
-        lines.append("v %.9g %.9g %.9g" % at((mc[0], mc[1] + s, mc[2])))
-        lines.append("v %.9g %.9g %.9g" % at((mc[0], mc[1] - s, mc[2])))
-        top, bottom = (v - 1) * u + 1, (v - 1) * u + 2
+    faces = []
+    for n in normals:  # the half-space behind n, w from c
+        d = -sum(n[k] * (c[k] + w * n[k]) for k in range(3))
+        faces.append(f"{n[0]:.9g} {n[1]:.9g} {n[2]:.9g} {d:.9g}")
+    return faces
 
-        def vi(j, i):  # ring j (0..v-2), column i
-            return j * u + i % u + 1
+
+def obj_vertex(point):
+    return "v %.9g %.9g %.9g" % point
+
+
+def lumpy_ball(r, at, center, size):
+    """OBJ lines of a closed ball whose radius swells and shrinks by 30%,
+    latitude rings between two poles."""
+    u, v, k, m = r.randint(12, 30), r.randint(8, 15), r.randint(2, 6), r.randint(1, 4)
+    lines = []
+    for j in range(1, v):
+        th = math.pi * j / v
         for i in range(u):
-            lines.append(f"f {top} {vi(0, i + 1)} {vi(0, i)}")
-            lines.append(f"f {bottom} {vi(v - 2, i)} {vi(v - 2, i + 1)}")
-            for j in range(v - 2):
-                lines.append(f"f {vi(j, i)} {vi(j, i + 1)} {vi(j + 1, i + 1)} {vi(j + 1, i)}")
-    else:
-        n, amp, f = r.randint(10, 20), r.uniform(0.05, 0.5), r.uniform(1, 4)
-        tilt = r.uniform(-0.8, 0.8)
-        for j in range(n + 1):
-            for i in range(n + 1):
-                x, z = s * (2 * i / n - 1), s * (2 * j / n - 1)
-                y = amp * s * math.sin(f * x / s) * math.cos(f * z / s) + tilt * x
-                lines.append("v %.9g %.9g %.9g" % at((mc[0] + x, mc[1] + y, mc[2] + z)))
-        for j in range(n):
-            for i in range(n):
-                a = j * (n + 1) + i + 1
-                lines.append(f"f {a} {a + n + 1} {a + n + 2} {a + 1}")
-    files[name] = "\n".join(lines) + "\n"
-    objects.append(head() + f"mesh {name}")
+            ph = 2 * math.pi * i / u
+            rad = size * (1 + 0.3 * math.sin(k * ph) * math.sin(m * th))
+            lines.append(obj_vertex(at((center[0] + rad * math.sin(th) * math.cos(ph),
+                                        center[1] + rad * math.cos(th),
+                                        center[2] + rad * math.sin(th) * math.sin(ph)))))
+    lines.append(obj_vertex(at((center[0], center[1] + size, center[2]))))
+    lines.append(obj_vertex(at((center[0], center[1] - size, center[2]))))
+    top, bottom = (v - 1) * u + 1, (v - 1) * u + 2
+
+    def ring(j, i):  # the vertex of ring j (0..v-2), column i
+        return j * u + i % u + 1
+    for i in range(u):
+        lines.append(f"f {top} {ring(0, i + 1)} {ring(0, i)}")
+        lines.append(f"f {bottom} {ring(v - 2, i)} {ring(v - 2, i + 1)}")
+        for j in range(v - 2):
+            lines.append(f"f {ring(j, i)} {ring(j, i + 1)} {ring(j + 1, i + 1)} {ring(j + 1, i)}")
+    return lines
+
+
+def wavy_sheet(r, at, center, size):
+    """OBJ lines of an open, tilted and rippled square sheet of quads."""
+    n, amp, f = r.randint(10, 20), r.uniform(0.05, 0.5), r.uniform(1, 4)
+    tilt = r.uniform(-0.8, 0.8)
+    lines = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, z = size * (2 * i / n - 1), size * (2 * j / n - 1)
+            y = amp * size * math.sin(f * x / size) * math.cos(f * z / size) + tilt * x
+            lines.append(obj_vertex(at((center[0] + x, center[1] + y, center[2] + z))))
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            lines.append(f"f {a} {a + n + 1} {a + n + 2} {a + 1}")
+    return lines
 
 
 def add_extras(r, scale, off, dist, nlights, pigments, objects):
