@@ -94,7 +94,11 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
     fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh "
                     "and upload)\n", st->device);
-    fprintf(stderr, "tp2: bvh        %8.3f s (building the BVH)\n", st->bvh);
+    fprintf(stderr, "tp2: bvh        %8.3f s (%s %llu bounded primitive%s%s; %llu unbounded, "
+                    "tested by every ray)\n", st->bvh,
+            st->has_bvh ? "building the BVH over" : "no BVH:", (unsigned long long)st->bounded,
+            st->bounded == 1 ? "" : "s", st->has_bvh ? "" : ", in a plain loop",
+            (unsigned long long)st->unbounded);
     fprintf(stderr, "tp2: upload     %8.3f s (packing and filling the device's buffers",
             st->upload);
     if (st->in_place)

@@ -1395,6 +1395,9 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     stats->device = device.seconds;
     stats->pipeline_beside = early ? t_made - t_make : 0;
     stats->bvh = packed.bvh_time;
+    stats->bounded = packed.bounded;
+    stats->unbounded = packed.unbounded;
+    stats->has_bvh = packed.features.bvh;
     stats->upload = (t_packed - t1 - packed.bvh_time) + (t2 - t_planned);
     /* What the early pipelines kept waiting once packing was done (early
      * only when packing outlasted the device), then what was made after. */

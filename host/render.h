@@ -38,6 +38,9 @@ struct render_options {
  * time spent in the row callback). */
 struct render_stats {
     double device, pipeline, bvh, upload, render, readback, write;
+    uint64_t bounded, unbounded; /* primitives in the BVH (or its plain loop),
+                                  * and those every ray tests */
+    bool has_bvh;         /* whether the bounded ones have a BVH */
     double pipeline_beside; /* making the pipelines beside bvh and upload
                              * (a large scene); pipeline counts only what
                              * was waited for */

@@ -455,6 +455,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
+    out->bounded = lay.nbounded;
+    out->unbounded = lay.nprims - lay.nbounded;
     if (rc == 0 && opt->features_known)
         opt->features_known(&out->features, opt->user);
     if (rc == 0)

@@ -43,6 +43,8 @@ struct packed_scene {
     size_t size[TP2_INPUT_BUFFERS];
     struct scene_features features;
     double bvh_time; /* seconds spent building the BVH (for --stats) */
+    size_t bounded, unbounded; /* primitives with a box, and those every ray
+                                * tests (for --stats) */
 };
 
 /* Packs s: camera basis, lights, materials, texels, and the objects as GPU

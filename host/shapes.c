@@ -441,26 +441,34 @@ static void quadric_matrix(const double *q, double m[3][3])
     m[1][2] = m[2][1] = q[5] / 2;
 }
 
-/* Where rays are measured from: the center -M^-1 g / 2 when M is well
- * invertible (ellipsoids, hyperboloids), so that the ray's numbers stay
- * the size of the quadric however far the camera; else the origin. */
+/* The center -M^-1 g / 2 of quadric q (g = G H I), with M, its cofactor
+ * rows (M being symmetric, M^-1 is them over det) and det; false unless
+ * M is well invertible (ellipsoids, hyperboloids: |det| > 1e-9 size^3). */
+static bool quadric_center(const double *q, double m[3][3], double cof[3][3], double *det,
+                           double center[3])
+{
+    quadric_matrix(q, m);
+    vec3_cross(m[1], m[2], cof[0]);
+    vec3_cross(m[2], m[0], cof[1]);
+    vec3_cross(m[0], m[1], cof[2]);
+    *det = vec3_dot(m[0], cof[0]);
+    double size = fmax(vec3_max_abs(m[0]), fmax(vec3_max_abs(m[1]), vec3_max_abs(m[2])));
+    if (!(fabs(*det) > 1e-9 * size * size * size))
+        return false;
+    const double g[3] = {q[6] / 2, q[7] / 2, q[8] / 2};
+    for (int i = 0; i < 3; i++)
+        center[i] = -vec3_dot(cof[i], g) / *det;
+    return isfinite(center[0]) && isfinite(center[1]) && isfinite(center[2]);
+}
+
+/* Where rays are measured from: the center when there is one, so that the
+ * ray's numbers stay the size of the quadric however far the camera; else
+ * the origin. */
 static void quadric_reference(const double *q, double ref[3])
 {
-    double m[3][3], c0[3], c1[3], c2[3];
-    quadric_matrix(q, m);
-    vec3_cross(m[1], m[2], c0);
-    vec3_cross(m[2], m[0], c1);
-    vec3_cross(m[0], m[1], c2);
-    double det = vec3_dot(m[0], c0);
-    double size = fmax(vec3_max_abs(m[0]), fmax(vec3_max_abs(m[1]), vec3_max_abs(m[2])));
-    ref[0] = ref[1] = ref[2] = 0;
-    if (!(fabs(det) > 1e-9 * size * size * size))
-        return;
-    /* M is symmetric: its inverse is the cofactor rows over det. */
-    const double g[3] = {q[6] / 2, q[7] / 2, q[8] / 2};
-    double x[3] = {-vec3_dot(c0, g) / det, -vec3_dot(c1, g) / det, -vec3_dot(c2, g) / det};
-    if (isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))
-        memcpy(ref, x, sizeof x);
+    double m[3][3], cof[3][3], det;
+    if (!quadric_center(q, m, cof, &det, ref))
+        ref[0] = ref[1] = ref[2] = 0;
 }
 
 static void quadric_pack(const double *q, size_t n, size_t k, struct shape_record *rec,
@@ -488,6 +496,38 @@ static void quadric_pack(const double *q, size_t n, size_t k, struct shape_recor
     rec->row[2][0] = c[8];
     rec->row[2][1] = c[9];
     record_row((struct shape_record *)extra, 0, ref, 0);
+}
+
+/* An ellipsoid's box: bounded when the packed quadratic part M is definite
+ * (its leading minors' signs + + + or - + -) and has a center
+ * (quadric_center; then det, M^-1 and the box are off by far less than
+ * the 1e-4 they are widened by). About its center y0 the packed quadric
+ * is y.M y = r with r = -(c + g.y0 / 2), so the surface reaches
+ * sqrt(r (M^-1)ii) along axis i. Computed from what pack gives the GPU,
+ * so the box holds the surface the shader sees. An empty one (r of the
+ * wrong sign) gets its center's point. Hyperboloids, paraboloids and
+ * cylinders stay unbounded. */
+static bool quadric_bounds(const double *p, size_t n, size_t k, double lo[3], double hi[3])
+{
+    struct shape_record rec;
+    double ref[4], m[3][3], cof[3][3], det, y0[3];
+    quadric_pack(p, n, k, &rec, &ref);
+    const double *a = rec.row[0], *b = rec.row[1];
+    double q[10] = {a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3], rec.row[2][0],
+                    rec.row[2][1]};
+    if (!quadric_center(q, m, cof, &det, y0))
+        return false;
+    double minor2 = m[0][0] * m[1][1] - m[0][1] * m[0][1];
+    if (!(minor2 > 0 && m[0][0] * det > 0))
+        return false;
+    double r = -(q[9] + (q[6] * y0[0] + q[7] * y0[1] + q[8] * y0[2]) / 2);
+    for (int i = 0; i < 3; i++) {
+        double half = sqrt(fmax(0.0, r * cof[i][i] / det)) * (1 + 1e-4);
+        lo[i] = ref[i] + y0[i] - half;
+        hi[i] = ref[i] + y0[i] + half;
+    }
+    widen(lo, hi);
+    return true;
 }
 
 /* Only the reference point moves: the coefficients are about it. */
@@ -619,7 +659,7 @@ const struct shape_kind shape_kinds[SHAPE_COUNT] = {
     [SHAPE_TORUS] = {"torus", TP2_SHAPE_TORUS, torus_read, one_primitive, torus_bounds,
                      no_extra, torus_pack, move_first_row},
     [SHAPE_QUADRIC] = {"quadric", TP2_SHAPE_QUADRIC, quadric_read, one_primitive,
-                       unbounded, quadric_extra, quadric_pack, quadric_move},
+                       quadric_bounds, quadric_extra, quadric_pack, quadric_move},
     [SHAPE_TRIANGLE] = {"triangle", TP2_SHAPE_TRIANGLE, triangle_read, triangle_count,
                         triangle_bounds, no_extra, triangle_pack, triangle_move},
     [SHAPE_MESH] = {"mesh", TP2_SHAPE_TRIANGLE, mesh_read, triangle_count,

@@ -46,8 +46,8 @@ struct shape_kind {
      * one per triangle. */
     size_t (*primitives)(const double *p, size_t n);
     /* Bounds of primitive k, containing it exactly (rounded outward);
-     * returns false when it is unbounded (a plane, a quadric, an open
-     * polyhedron), which every ray then tests. */
+     * returns false when it is unbounded (a plane, a quadric other than
+     * an ellipsoid, an open polyhedron), which every ray then tests. */
     bool (*bounds)(const double *p, size_t n, size_t k, double lo[3], double hi[3]);
     /* Rows of the extra buffer primitive k needs. */
     size_t (*extra_rows)(const double *p, size_t n);

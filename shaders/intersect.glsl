@@ -1,7 +1,7 @@
 // intersect.glsl: a ray against the whole scene: the bounded objects
 // through the BVH (or a plain loop when there are few), then the unbounded
-// ones (planes, quadrics, open polyhedra). Each kind's own test is in
-// shapes.glsl.
+// ones (planes, quadrics other than ellipsoids, open polyhedra). Each
+// kind's own test is in shapes.glsl.
 
 const real NO_HIT = real(3.0e38);
 const float NO_GRAZE = 3.0e38; // Hit.graze before any sphere was passed

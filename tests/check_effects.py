@@ -559,6 +559,48 @@ def case_bvh_matches_loop(c):
         c.expect(lit > 1000, f"{scene} {precision}: only {lit} pixels differ from the corner")
 
 
+def ellipsoid_grid(n_side):
+    """n_side^2 tilted ellipsoids written as quadrics (x^2 + 4 y^2 + 2 z^2
+    + x z about each center, some glass), over a plane and under an
+    unbounded hyperboloid's sheet."""
+    rows = []
+    for i in range(n_side):
+        for j in range(n_side):
+            cx, cy, cz = (i - n_side / 2) * 0.8, (j - n_side / 2) * 0.8, -6.0
+            q = [1, 4, 2, 0, 1, 0, -2 * cx - cz, -8 * cy, -4 * cz - cx,
+                 cx * cx + 4 * cy * cy + 2 * cz * cz + cx * cz - 0.09]
+            rows.append(f"0 {(i + j) % 2} quadric " + " ".join(f"{v:.6g}" for v in q))
+    rows.append("1 0 plane 0 0 1 8")
+    rows.append("1 0 quadric 1 1 -1 0 0 0 0 0 0 -30")  # a hyperboloid of one sheet
+    return ("0 0 0\n0 0 -1\n0 1 0\n50\n2\n0 0 0 0.3 0.3 0.3 0 0 0\n3 4 2 1 1 1 1 0 0\n"
+            "2\nsolid 0.9 0.5 0.2\nchecker 1 1 1  0.1 0.2 0.6  0.5\n"
+            "2\n0.2 0.7 0.3 20 0.2 0 1\n0.05 0.1 0.5 40 0.1 0.8 1.4\n" +
+            f"{len(rows)}\n" + "\n".join(rows) + "\n")
+
+
+def case_ellipsoids_in_bvh(c):
+    """An ellipsoid written as a quadric has a box (host/shapes.c,
+    quadric_bounds), so a grid of them goes into the BVH (--stats says
+    so) while other quadrics stay unbounded; the image is the plain
+    loop's, byte for byte, by default and in double."""
+    scene = scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6))
+    for precision in ("auto", "double"):
+        outs = []
+        for name, n in (("bvh", "1"), ("loop", "100000")):
+            out = os.path.join(c.tmp, name + ".pfm")
+            status, _, err = run(c.tp2, ["--stats", "--bvh-min", n, "--precision", precision,
+                                         scene, out, "96", "72"])
+            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+            said = ("building the BVH over 36 bounded primitives" if name == "bvh" else
+                    "no BVH: 36 bounded primitives, in a plain loop")
+            c.expect(f"({said}; 2 unbounded, tested by every ray)" in err,
+                     f"{precision} {name}: {err!r}")
+            outs.append(read_pfm(out)[2])
+        c.expect(outs[0] == outs[1], f"{precision}: BVH and loop images differ")
+        colors = {px for row in outs[0] for px in row}
+        c.expect(len(colors) > 500, f"{precision}: only {len(colors)} colors")
+
+
 def case_pipeline_cache(c):
     """The cache is written, reused, and survives corrupt or foreign files."""
     env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}

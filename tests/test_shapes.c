@@ -3,9 +3,10 @@
  *
  * Bounds must contain every point of the shape (checked on points spread
  * over each surface) and be tight; polyhedra are bounded or not as their
- * faces say; a triangle's record carries the normal its winding gives; a
- * quadric's record, about its reference point, is the same function;
- * a record moved to a new origin is the record of the moved shape.
+ * faces say, quadrics as their matrix does; a triangle's record carries
+ * the normal its winding gives; a quadric's record, about its reference
+ * point, is the same function; a record moved to a new origin is the
+ * record of the moved shape.
  * Prints "N passed, M failed" last. */
 #include <math.h>
 #include <stdio.h>
@@ -140,8 +141,77 @@ static void test_round_bounds(void)
     double lo[3], hi[3];
     const double plane[4] = {0, 1, 0, 0};
     CHECK(!shape_kinds[SHAPE_PLANE].bounds(plane, 4, 0, lo, hi));
-    const double quadric[10] = {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
-    CHECK(!shape_kinds[SHAPE_QUADRIC].bounds(quadric, 10, 0, lo, hi));
+}
+
+/* The quadric (x - c).M (x - c) - 1 = 0 of the ellipsoid with center c,
+ * semi-axes s along the columns of rotation r, as SPEC's A..J (times
+ * `sign`: the same surface with its inside outside); its points go to
+ * pts, n of them. */
+static int ellipsoid(const double c[3], const double s[3], double r[3][3], double sign,
+                     double q[10])
+{
+    double m[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            m[i][j] = 0;
+            for (int k = 0; k < 3; k++)
+                m[i][j] += r[i][k] * r[j][k] / (s[k] * s[k]);
+        }
+    double mc[3] = {vec3_dot(m[0], c), vec3_dot(m[1], c), vec3_dot(m[2], c)};
+    const double coef[10] = {m[0][0], m[1][1], m[2][2], 2 * m[0][1], 2 * m[0][2],
+                             2 * m[1][2], -2 * mc[0], -2 * mc[1], -2 * mc[2],
+                             vec3_dot(c, mc) - 1};
+    for (int i = 0; i < 10; i++)
+        q[i] = sign * coef[i];
+    int n = 0;
+    for (int i = 0; i < 80; i++)
+        for (int j = 0; j <= 48; j++, n++) {
+            double th = pi * j / 48, ph = 2 * pi * i / 80;
+            double e[3] = {s[0] * sin(th) * cos(ph), s[1] * sin(th) * sin(ph), s[2] * cos(th)};
+            for (int a = 0; a < 3; a++)
+                pts[n][a] = c[a] + r[a][0] * e[0] + r[a][1] * e[1] + r[a][2] * e[2];
+        }
+    return n;
+}
+
+/* An ellipsoid written as a quadric is bounded by its exact box, tilted
+ * or not, either sign, far from 0 or not; an empty one by its center's
+ * point; the quadrics that reach infinity are unbounded. */
+static void test_quadric_bounds(void)
+{
+    double q[10], lo[3], hi[3];
+    double r[3][3], w[3] = {0.3, -0.5, 0.81}, u[3], v[3];
+    vec3_unit(w, w);
+    frame(w, u, v);
+    for (int a = 0; a < 3; a++)
+        r[a][0] = u[a], r[a][1] = v[a], r[a][2] = w[a];
+    const double c[3] = {1.5, -2, 0.25}, s[3] = {2, 0.5, 1.25};
+    int n = ellipsoid(c, s, r, 1, q);
+    check_bounds("tilted ellipsoid", SHAPE_QUADRIC, q, 10, n, 2e-3);
+    n = ellipsoid(c, s, r, -1, q);
+    check_bounds("tilted ellipsoid, inside out", SHAPE_QUADRIC, q, 10, n, 2e-3);
+    const double far[3] = {-3e3, 1e3, 2e3}, cigar[3] = {0.01, 0.01, 5};
+    n = ellipsoid(far, cigar, r, 1, q);
+    check_bounds("far thin ellipsoid", SHAPE_QUADRIC, q, 10, n, 2e-3);
+    double axes[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    n = ellipsoid(c, s, axes, 1, q);
+    check_bounds("ellipsoid", SHAPE_QUADRIC, q, 10, n, 1e-9 + 1e-4 * 2);
+
+    const double empty[10] = {1, 2, 3, 0, 0, 0, -2, 0, 0, 5}; /* (x-1)^2 + ... = -4 */
+    CHECK(shape_kinds[SHAPE_QUADRIC].bounds(empty, 10, 0, lo, hi));
+    CHECK(fabs(lo[0] - 1) < 1e-9 && fabs(hi[0] - 1) < 1e-9 && hi[1] - lo[1] < 1e-9 &&
+          hi[2] - lo[2] < 1e-9);
+    const double unbounded[][10] = {
+        {1, 1, -1, 0, 0, 0, 0, 0, 0, -1}, /* hyperboloid of one sheet */
+        {-1, -1, 1, 0, 0, 0, 0, 0, 0, -1}, /* of two sheets */
+        {1, 0, 1, 0, 0, 0, 0, -1, 0, 0},  /* paraboloid */
+        {1, 4, 0, 0, 0, 0, 0, 0, 0, -1},  /* elliptic cylinder */
+        {1, 1, 1, 2, 0, 0, 0, 0, 0, -1},  /* (x + y)^2 + z^2: a cylinder, tilted */
+        {0, 0, 0, 0, 0, 0, 1, 1, 1, 0},   /* a plane */
+    };
+    for (size_t i = 0; i < sizeof unbounded / sizeof unbounded[0]; i++)
+        expect(!shape_kinds[SHAPE_QUADRIC].bounds(unbounded[i], 10, 0, lo, hi),
+               "quadric %zu: bounded", i);
 }
 
 static void test_convex_bounds(void)
@@ -322,6 +392,7 @@ static void test_moved_records(void)
 int main(void)
 {
     test_round_bounds();
+    test_quadric_bounds();
     test_convex_bounds();
     test_triangle_record();
     test_quadric_record();
