@@ -453,6 +453,11 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     out->features = scene_features(s, lay.samples);
     out->features.bounded_shape = single_kind(lay.bounded_kinds);
     out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
+    /* The bounded objects' one kind, known beside unbounded ones of
+     * several kinds, made the shader slower, not faster (README.TXT
+     * "How it is built"): then neither is known. */
+    if (lay.unbounded_kinds != 0 && out->features.unbounded_shape < 0)
+        out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
     out->bounded = lay.nbounded;
