@@ -1,8 +1,19 @@
-/* convex.c: bounding boxes of convex polyhedra (see convex.h). */
+/* convex.c: bounding boxes of convex polyhedra (see convex.h).
+ *
+ * Each side of the box is a linear program: the largest (or smallest) x, y
+ * or z over the faces' half-spaces. They are solved by Seidel's randomized
+ * incremental algorithm, in expected time linear in the faces: keep the
+ * best point of the half-spaces added so far; when the next one excludes
+ * it, the new best point lies on that half-space's plane, a problem of one
+ * dimension less over the half-spaces before it. A box of half-width M
+ * around the origin keeps every problem bounded; a side that reaches it is
+ * an unbounded polyhedron (or one too large to be worth a box). */
 #include "convex.h"
 
 #include <math.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <stdlib.h>
 
 #include "vec3.h"
 
@@ -10,98 +21,159 @@
  * few operations in double, far below anything a scene means. */
 #define CONVEX_TOL 1e-9
 
-/* 1 if some direction v != 0 has n.v <= 0 for every face: the polyhedron
- * then contains a ray from each of its points, so it is unbounded (or
- * empty). Such a cone, unless it holds a line, is spanned by extreme rays
- * on two independent faces, parallel to n_i x n_j; one holding a line
- * exists exactly when the normals do not span space. */
-static bool has_recession_direction(const double *f, size_t n)
+/* a.x <= b, over the coordinates not yet eliminated (a[k] == 0 for the
+ * others); scale is the size of the terms it was made of, for tolerances. */
+struct half {
+    double a[3], b, scale;
+};
+
+struct lp {
+    double m;             /* the bounding box's half-width */
+    struct half *work[3]; /* each dimension's projected half-spaces */
+    size_t budget;        /* half-spaces it may still project */
+};
+
+/* The part of h's side that is rounding, at x. */
+static double slack(const struct half *h, const double x[3])
 {
-    bool spans = false;
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = i + 1; j < n; j++) {
-            double v[3];
-            vec3_cross(f + 4 * i, f + 4 * j, v);
-            if (!vec3_unit(v, v))
-                continue;
-            for (size_t k = 0; k < n && !spans; k++) {
-                double u[3];
-                vec3_unit(f + 4 * k, u);
-                spans = fabs(vec3_dot(u, v)) > CONVEX_TOL;
-            }
-            for (int sign = -1; sign <= 1; sign += 2) {
-                size_t k = 0;
-                for (; k < n; k++) {
-                    double u[3];
-                    vec3_unit(f + 4 * k, u);
-                    if (sign * vec3_dot(u, v) > CONVEX_TOL)
-                        break;
-                }
-                if (k == n)
-                    return true;
-            }
+    double terms = fabs(h->b);
+    for (int l = 0; l < 3; l++)
+        terms += fabs(h->a[l] * x[l]);
+    return CONVEX_TOL * terms;
+}
+
+/* The best x_k over the half-spaces (one coordinate k left): false if they
+ * exclude each other. Coefficients that are rounding are taken for 0,
+ * which drops a half-space nearly parallel to the line (a larger box) or
+ * calls the problem infeasible (then no box at all): both are safe. */
+static bool solve_1d(const struct lp *p, int k, const struct half *h, size_t n,
+                     const double c[3], double x[3])
+{
+    double lo = -p->m, hi = p->m;
+    for (size_t i = 0; i < n; i++) {
+        double rest = h[i].b;
+        for (int l = 0; l < 3; l++)
+            if (l != k)
+                rest -= h[i].a[l] * x[l];
+        double a = h[i].a[k];
+        if (fabs(a) <= 1e-12 * h[i].scale) {
+            if (rest < -slack(&h[i], x))
+                return false;
+        } else if (a > 0) {
+            hi = fmin(hi, rest / a);
+        } else {
+            lo = fmax(lo, rest / a);
         }
-    return !spans;
-}
-
-/* The point where faces i, j, k meet (Cramer's rule); false if they do
- * not meet in one point. */
-static bool corner(const double *a, const double *b, const double *c, double x[3])
-{
-    double bc[3], ca[3], ab[3];
-    vec3_cross(b, c, bc);
-    vec3_cross(c, a, ca);
-    vec3_cross(a, b, ab);
-    double det = vec3_dot(a, bc);
-    double scale = sqrt(vec3_dot(a, a) * vec3_dot(b, b) * vec3_dot(c, c));
-    if (!(fabs(det) > CONVEX_TOL * scale))
+    }
+    if (lo > hi + CONVEX_TOL * (fabs(lo) + fabs(hi)))
         return false;
-    for (int i = 0; i < 3; i++)
-        x[i] = -(a[3] * bc[i] + b[3] * ca[i] + c[3] * ab[i]) / det;
-    return isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]);
+    x[k] = c[k] > 0 ? hi : c[k] < 0 ? lo : fmin(fmax(0.0, lo), hi);
+    return true;
 }
 
-/* x satisfies every face, within the tolerance (generous: a corner kept
- * by mistake only widens the box). */
-static bool inside_all(const double *f, size_t n, const double x[3])
+/* h projected onto the plane p.x = q, coordinate k eliminated. */
+static struct half project(const struct half *h, const struct half *plane, int k)
 {
-    for (size_t m = 0; m < n; m++) {
-        const double *p = f + 4 * m;
-        double len = sqrt(vec3_dot(p, p));
-        double slack = CONVEX_TOL * (fabs(p[3]) + len * vec3_max_abs(x));
-        if (vec3_dot(p, x) + p[3] > slack)
+    double f = h->a[k] / plane->a[k];
+    struct half out = {{0, 0, 0}, h->b - f * plane->b, h->scale + fabs(f) * plane->scale};
+    for (int l = 0; l < 3; l++)
+        out.a[l] = l == k ? 0 : h->a[l] - f * plane->a[l];
+    return out;
+}
+
+/* Maximizes c.x over the half-spaces h[0..n) and the box, over the d
+ * coordinates whose bit is in `free` (x holds the others). */
+static bool solve(struct lp *p, int d, unsigned free, const struct half *h, size_t n,
+                  const double c[3], double x[3])
+{
+    int only = free & 1 ? 0 : free & 2 ? 1 : 2;
+    if (d == 1)
+        return solve_1d(p, only, h, n, c, x);
+    for (int l = 0; l < 3; l++) /* the box's best corner */
+        if (free >> l & 1)
+            x[l] = c[l] > 0 ? p->m : c[l] < 0 ? -p->m : 0;
+    struct half *sub = p->work[d - 1];
+    for (size_t i = 0; i < n; i++) {
+        if (vec3_dot(h[i].a, x) <= h[i].b + slack(&h[i], x))
+            continue;
+        int k = -1; /* eliminate the coordinate the plane depends on most */
+        for (int l = 0; l < 3; l++)
+            if (free >> l & 1 && (k < 0 || fabs(h[i].a[l]) > fabs(h[i].a[k])))
+                k = l;
+        if (!(fabs(h[i].a[k]) > 1e-12 * h[i].scale))
+            return false; /* 0 <= b, violated: infeasible */
+        if (p->budget < i + 2)
+            return false; /* an order that defeats the shuffle: give up */
+        p->budget -= i + 2;
+        /* The box's own sides on k now bound the plane's problem. */
+        struct half side[2] = {{{0, 0, 0}, p->m, 1}, {{0, 0, 0}, p->m, 1}};
+        side[0].a[k] = 1;
+        side[1].a[k] = -1;
+        size_t m = 0;
+        for (int s = 0; s < 2; s++)
+            sub[m++] = project(&side[s], &h[i], k);
+        for (size_t j = 0; j < i; j++)
+            sub[m++] = project(&h[j], &h[i], k);
+        double f = c[k] / h[i].a[k], cs[3];
+        for (int l = 0; l < 3; l++)
+            cs[l] = l == k ? 0 : c[l] - f * h[i].a[l];
+        if (!solve(p, d - 1, free & ~(1u << k), sub, m, cs, x))
             return false;
+        double rest = h[i].b;
+        for (int l = 0; l < 3; l++)
+            if (l != k)
+                rest -= h[i].a[l] * x[l];
+        x[k] = rest / h[i].a[k];
     }
     return true;
 }
 
 int convex_bounds(const double *f, size_t n, double lo[3], double hi[3])
 {
-    if (n < 4 || n > CONVEX_MAX_FACES || has_recession_direction(f, n))
+    if (n < 4) /* fewer than four half-spaces never enclose a volume */
         return 0;
-    bool any = false;
-    for (int a = 0; a < 3; a++) {
-        lo[a] = INFINITY;
-        hi[a] = -INFINITY;
+    struct half *h = malloc((3 * n + 4) * sizeof *h);
+    if (!h)
+        return 0; /* unbounded is always right, only slower */
+    struct lp p = {0, {NULL, h + n, h + 2 * n + 2}, 0};
+    double far = 0;
+    for (size_t i = 0; i < n; i++) {
+        double len = vec3_unit(f + 4 * i, h[i].a);
+        h[i].b = -f[4 * i + 3] / len;
+        h[i].scale = 1;
+        far = fmax(far, fabs(h[i].b));
     }
-    /* A bounded polyhedron is the hull of its corners. */
-    for (size_t i = 0; i < n; i++)
-        for (size_t j = i + 1; j < n; j++)
-            for (size_t k = j + 1; k < n; k++) {
-                double x[3];
-                if (!corner(f + 4 * i, f + 4 * j, f + 4 * k, x) || !inside_all(f, n, x))
-                    continue;
-                any = true;
-                for (int a = 0; a < 3; a++) {
-                    lo[a] = fmin(lo[a], x[a]);
-                    hi[a] = fmax(hi[a], x[a]);
-                }
-            }
+    /* The same shuffle every run (the box must not change between runs):
+     * the expected linear time holds for any polyhedron, as long as the
+     * order does not depend on it. */
+    uint64_t s = 0x9e3779b97f4a7c15u;
+    for (size_t i = n - 1; i > 0; i--) {
+        s ^= s << 13, s ^= s >> 7, s ^= s << 17;
+        size_t j = (size_t)(s % (i + 1));
+        struct half t = h[i];
+        h[i] = h[j], h[j] = t;
+    }
+    p.m = 0x1p20 * (far + 1);
+    /* Per side: the tests' polyhedra project at most 27 n half-spaces; at
+     * 4096 faces this caps a side at a few milliseconds. */
+    size_t budget = 256 * n + 4096;
+    int bounded = 1;
+    for (int side = 0; side < 6 && bounded; side++) {
+        int a = side / 2;
+        double c[3] = {0, 0, 0}, x[3] = {0, 0, 0};
+        c[a] = side % 2 ? 1 : -1;
+        p.budget = budget;
+        if (!solve(&p, 3, 7, h, n, c, x) || !(fabs(x[a]) < 0.5 * p.m))
+            bounded = 0; /* infeasible (empty: nothing to see) or unbounded */
+        else if (side % 2)
+            hi[a] = x[a];
+        else
+            lo[a] = x[a];
+    }
+    free(h);
+    if (!bounded)
+        return 0;
     for (int a = 0; a < 3; a++) {
-        if (!any) {
-            lo[a] = hi[a] = 0;
-            continue;
-        }
         double pad = CONVEX_TOL * (fabs(lo[a]) + fabs(hi[a]) + (hi[a] - lo[a]));
         lo[a] -= pad;
         hi[a] += pad;

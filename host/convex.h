@@ -8,16 +8,12 @@
 
 #include <stddef.h>
 
-/* Polyhedra with more faces than this are not bounded here (vertex
- * enumeration is quartic in the faces); they are treated as unbounded,
- * which costs speed, never correctness. */
-#define CONVEX_MAX_FACES 128
-
 /* Returns 1 and a box containing the polyhedron of n faces (each a b c d,
- * (a b c) != 0) when it is bounded, or 0 when it is unbounded or has more
- * than CONVEX_MAX_FACES faces. "Bounded" is decided with a tolerance that
- * errs toward "unbounded"; the box errs toward larger. An empty bounded
- * polyhedron gets the point box at the origin. */
+ * (a b c) != 0) when it is bounded and not empty, or 0 when it is
+ * unbounded, empty, or reaches 2^19 times its farthest face's distance
+ * from the origin: those are tested by every ray, which costs speed, never
+ * correctness. The box errs toward larger (by 1e-9 of itself); "bounded"
+ * and "not empty" err toward 0. Expected time linear in n. */
 int convex_bounds(const double *faces, size_t n, double lo[3], double hi[3]);
 
 #endif

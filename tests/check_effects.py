@@ -578,27 +578,67 @@ def ellipsoid_grid(n_side):
             f"{len(rows)}\n" + "\n".join(rows) + "\n")
 
 
-def case_ellipsoids_in_bvh(c):
-    """An ellipsoid written as a quadric has a box (host/shapes.c,
-    quadric_bounds), so a grid of them goes into the BVH (--stats says
-    so) while other quadrics stay unbounded; the image is the plain
-    loop's, byte for byte, by default and in double."""
-    scene = scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6))
+def expect_in_bvh(c, scene, bounded, size, min_colors):
+    """--stats says the scene's `bounded` primitives go into the BVH and 2
+    unbounded ones are tested by every ray, and the image through the BVH
+    is the plain loop's (--bvh-min 100000), byte for byte, by default and
+    in double."""
     for precision in ("auto", "double"):
         outs = []
         for name, n in (("bvh", "1"), ("loop", "100000")):
             out = os.path.join(c.tmp, name + ".pfm")
             status, _, err = run(c.tp2, ["--stats", "--bvh-min", n, "--precision", precision,
-                                         scene, out, "96", "72"])
+                                         scene, out, str(size[0]), str(size[1])])
             c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
-            said = ("building the BVH over 36 bounded primitives" if name == "bvh" else
-                    "no BVH: 36 bounded primitives, in a plain loop")
+            said = (f"building the BVH over {bounded} bounded primitives" if name == "bvh" else
+                    f"no BVH: {bounded} bounded primitives, in a plain loop")
             c.expect(f"({said}; 2 unbounded, tested by every ray)" in err,
                      f"{precision} {name}: {err!r}")
             outs.append(read_pfm(out)[2])
         c.expect(outs[0] == outs[1], f"{precision}: BVH and loop images differ")
         colors = {px for row in outs[0] for px in row}
-        c.expect(len(colors) > 500, f"{precision}: only {len(colors)} colors")
+        c.expect(len(colors) > min_colors, f"{precision}: only {len(colors)} colors")
+
+
+def case_ellipsoids_in_bvh(c):
+    """An ellipsoid written as a quadric has a box (host/shapes.c,
+    quadric_bounds), so a grid of them goes into the BVH while a
+    hyperboloid and a plane stay unbounded; the image is the loop's."""
+    expect_in_bvh(c, scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6)), 36, (96, 72), 500)
+
+
+def geodesic_grid(n_side, faces):
+    """n_side^2 polyhedra of `faces` faces each (the tangent planes of a
+    sphere of radius 0.3 at spread directions: nearly round), some glass,
+    over a plane and a floor written as a one-face polyhedron."""
+    golden = math.pi * (3 - math.sqrt(5))
+    rows = []
+    for i in range(n_side):
+        for j in range(n_side):
+            cx, cy, cz = (i - n_side / 2) * 0.8, (j - n_side / 2) * 0.8, -6.0
+            planes = []
+            for k in range(faces):
+                z = 1 - (2 * k + 1) / faces
+                ring = math.sqrt(1 - z * z)
+                u = (ring * math.cos(golden * k), ring * math.sin(golden * k), z)
+                d = -(u[0] * cx + u[1] * cy + u[2] * cz + 0.3)
+                planes.append(" ".join(f"{v:.9g}" for v in (*u, d)))
+            rows.append(f"0 {(i + j) % 2} polyhedron {faces}\n" + "\n".join(planes))
+    rows.append("1 0 plane 0 0 1 8")
+    rows.append("1 0 polyhedron 1\n-1 0 0 3")  # a wall, x >= 3: a half-space
+    return ("0 0 0\n0 0 -1\n0 1 0\n50\n2\n0 0 0 0.3 0.3 0.3 0 0 0\n3 4 2 1 1 1 1 0 0\n"
+            "2\nsolid 0.9 0.5 0.2\nchecker 1 1 1  0.1 0.2 0.6  0.5\n"
+            "2\n0.2 0.7 0.3 20 0.2 0 1\n0.05 0.1 0.5 40 0.1 0.8 1.4\n" +
+            f"{len(rows)}\n" + "\n".join(rows) + "\n")
+
+
+def case_many_faced_polyhedra_in_bvh(c):
+    """A bounded polyhedron of any face count has a box (host/convex.c's
+    linear programs), so 16 polyhedra of 160 faces (past the 128 of the
+    method before) go into the BVH while a half-space and a plane stay
+    unbounded; the image is the loop's."""
+    scene = scene_file(c.tmp, "geodesics.txt", geodesic_grid(4, 160))
+    expect_in_bvh(c, scene, 16, (64, 48), 300)
 
 
 def case_pipeline_cache(c):

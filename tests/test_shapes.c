@@ -9,6 +9,7 @@
  * record of the moved shape.
  * Prints "N passed, M failed" last. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -214,6 +215,222 @@ static void test_quadric_bounds(void)
                "quadric %zu: bounded", i);
 }
 
+/* The oracle: the previous method, cubic in the faces. A bounded
+ * polyhedron is the hull of its corners (every triple of faces meeting in
+ * one point that all faces hold); it is unbounded when some direction v
+ * has n.v <= 0 for every face, found among the n_i x n_j (or the normals
+ * do not span space). */
+#define ORACLE_TOL 1e-9
+
+static int oracle_unbounded(const double *f, size_t n)
+{
+    int spans = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++) {
+            double v[3];
+            vec3_cross(f + 4 * i, f + 4 * j, v);
+            if (!vec3_unit(v, v))
+                continue;
+            for (size_t k = 0; k < n && !spans; k++) {
+                double u[3];
+                vec3_unit(f + 4 * k, u);
+                spans = fabs(vec3_dot(u, v)) > ORACLE_TOL;
+            }
+            for (int sign = -1; sign <= 1; sign += 2) {
+                size_t k = 0;
+                for (; k < n; k++) {
+                    double u[3];
+                    vec3_unit(f + 4 * k, u);
+                    if (sign * vec3_dot(u, v) > ORACLE_TOL)
+                        break;
+                }
+                if (k == n)
+                    return 1;
+            }
+        }
+    return !spans;
+}
+
+/* The corners' box; 0 if there is no corner (empty). */
+static int oracle_corners(const double *f, size_t n, double lo[3], double hi[3])
+{
+    int any = 0;
+    for (int a = 0; a < 3; a++)
+        lo[a] = INFINITY, hi[a] = -INFINITY;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++)
+            for (size_t k = j + 1; k < n; k++) {
+                const double *a = f + 4 * i, *b = f + 4 * j, *c = f + 4 * k;
+                double bc[3], ca[3], ab[3], x[3];
+                vec3_cross(b, c, bc);
+                vec3_cross(c, a, ca);
+                vec3_cross(a, b, ab);
+                double det = vec3_dot(a, bc);
+                double scale = sqrt(vec3_dot(a, a) * vec3_dot(b, b) * vec3_dot(c, c));
+                if (!(fabs(det) > ORACLE_TOL * scale))
+                    continue;
+                for (int e = 0; e < 3; e++)
+                    x[e] = -(a[3] * bc[e] + b[3] * ca[e] + c[3] * ab[e]) / det;
+                size_t m = 0;
+                for (; m < n; m++) {
+                    const double *p = f + 4 * m;
+                    double len = sqrt(vec3_dot(p, p));
+                    if (vec3_dot(p, x) + p[3] > ORACLE_TOL * (fabs(p[3]) + len * vec3_max_abs(x)))
+                        break;
+                }
+                if (m < n)
+                    continue;
+                any = 1;
+                for (int e = 0; e < 3; e++)
+                    lo[e] = fmin(lo[e], x[e]), hi[e] = fmax(hi[e], x[e]);
+            }
+    return any;
+}
+
+static uint64_t rng_state = 88172645463325252u;
+
+static double uniform(double a, double b)
+{
+    rng_state ^= rng_state << 13, rng_state ^= rng_state >> 7, rng_state ^= rng_state << 17;
+    return a + (b - a) * (double)(rng_state >> 11) * 0x1p-53;
+}
+
+static void random_unit(double u[3])
+{
+    do
+        for (int a = 0; a < 3; a++)
+            u[a] = uniform(-1, 1);
+    while (vec3_dot(u, u) > 1 || vec3_dot(u, u) < 1e-4);
+    vec3_unit(u, u);
+}
+
+/* A face n.(x - c) <= r, written with an arbitrary positive scale k. */
+static void tangent_face(double *f, const double n[3], const double c[3], double r, double k)
+{
+    for (int a = 0; a < 3; a++)
+        f[a] = k * n[a];
+    f[3] = -k * (vec3_dot(n, c) + r);
+}
+
+/* Random polyhedra of 4-24 faces, 1e-3 to 1e3 in size, up to 1e4 from 0:
+ * the box is the oracle's (it holds every corner, and each side is within
+ * 1e-7 of the polyhedron's size, and its own pad, of a corner); unbounded
+ * and empty ones get no box. */
+static void test_convex_against_oracle(void)
+{
+    enum { CASES = 600, MAXF = 24 };
+    static double f[MAXF * 4];
+    int bounded = 0, open = 0, empty = 0, bad = 0;
+    for (int t = 0; t < CASES; t++) {
+        size_t n = 4 + (size_t)uniform(0, MAXF - 4 + 0.999);
+        double c[3], size = pow(10, uniform(-3, 3)), away = pow(10, uniform(-1, 4));
+        random_unit(c);
+        for (int a = 0; a < 3; a++)
+            c[a] *= away;
+        int hemisphere = t % 7 == 3; /* every normal's z > 0: unbounded */
+        for (size_t i = 0; i < n; i++) {
+            double u[3];
+            random_unit(u);
+            if (hemisphere)
+                u[2] = fabs(u[2]) + 1e-3;
+            double r = size * uniform(0.3, 1);
+            if (t % 11 == 5 && i == n - 1) /* a sliver: the others' r >= 0.3 */
+                r = -size * uniform(0.2, 0.29);
+            if (t % 11 == 6 && i >= n - 2) { /* empty: u.(x - c) <= -r <= r <= u.(x - c) */
+                r = -size * 0.2;
+                if (i == n - 1)
+                    for (int a = 0; a < 3; a++)
+                        u[a] = -f[4 * (n - 2) + a];
+                vec3_unit(u, u);
+            }
+            tangent_face(f + 4 * i, u, c, r, pow(10, uniform(-2, 2)));
+        }
+        if (t % 13 == 7) /* repeated faces */
+            memmove(f + 4 * (n / 2), f, 4 * (n - n / 2) * sizeof f[0]);
+        double lo[3], hi[3], olo[3], ohi[3];
+        int got = convex_bounds(f, n, lo, hi);
+        int is_open = oracle_unbounded(f, n);
+        int want = !is_open && oracle_corners(f, n, olo, ohi);
+        bounded += want;
+        open += is_open;
+        empty += !want && !is_open;
+        if (got != want) {
+            bad++;
+            expect(0, "polyhedron %d (%zu faces): box %d, oracle %d", t, n, got, want);
+            continue;
+        }
+        for (int a = 0; a < 3 && want; a++) {
+            /* the box's own pad is 1e-9 of |lo| + |hi| + the span */
+            double near = 1e-7 * (ohi[a] - olo[a]) + 4e-9 * fmax(fabs(olo[a]), fabs(ohi[a]));
+            if (!(lo[a] <= olo[a] && hi[a] >= ohi[a] && olo[a] - lo[a] <= near &&
+                  hi[a] - ohi[a] <= near)) {
+                bad++;
+                expect(0, "polyhedron %d axis %d: [%.17g, %.17g] against corners [%.17g, %.17g]",
+                       t, a, lo[a], hi[a], olo[a], ohi[a]);
+            }
+        }
+    }
+    expect(bad == 0, "%d of %d polyhedra wrong", bad, CASES);
+    /* The cases must cover all three answers. */
+    expect(bounded > 300 && open > 50 && empty > 10, "bounded %d, unbounded %d, empty %d",
+           bounded, open, empty);
+}
+
+/* Many faces: 4096 tangent planes of a sphere, its box within the
+ * planes' covering angle (with the six axis planes among them: exact); the
+ * same faces all leaning one way, or along a belt: unbounded; 4095 faces
+ * meeting at one apex. */
+static void test_convex_many_faces(void)
+{
+    enum { N = 4096 };
+    static double f[N * 4];
+    const double c[3] = {1e3, -20, 0.5}, r = 3;
+    const double golden = pi * (3 - sqrt(5.0));
+    double lo[3], hi[3];
+    for (int axis_planes = 0; axis_planes <= 1; axis_planes++) {
+        for (int i = 0; i < N; i++) {
+            double z = 1 - (2 * i + 1.0) / N, ring = sqrt(1 - z * z);
+            double u[3] = {ring * cos(golden * i), ring * sin(golden * i), z};
+            if (axis_planes && i < 6) {
+                u[0] = u[1] = u[2] = 0;
+                u[i / 2] = i % 2 ? 1 : -1;
+            }
+            tangent_face(f + 4 * i, u, c, r, 1 + i % 5);
+        }
+        CHECK(convex_bounds(f, N, lo, hi) == 1);
+        for (int a = 0; a < 3; a++) {
+            CHECK(lo[a] <= c[a] - r && hi[a] >= c[a] + r);
+            /* 4096 spread normals leave no direction 0.04 radians from one. */
+            double slack = axis_planes ? 1e-8 * (fabs(c[a]) + r) : r * (1 / cos(0.04) - 1);
+            expect(c[a] - r - lo[a] <= slack && hi[a] - c[a] - r <= slack,
+                   "4096 faces, axis %d: [%.17g, %.17g]", a, lo[a], hi[a]);
+        }
+    }
+    for (int i = 0; i < N; i++) /* all leaning up: open toward -z */
+        f[4 * i + 2] = fabs(f[4 * i + 2]) + 1e-6;
+    CHECK(convex_bounds(f, N, lo, hi) == 0);
+    for (int i = 0; i < N; i++) { /* normals along a belt: a prism open along z */
+        double th = 2 * pi * i / N, u[3] = {cos(th), sin(th), 0};
+        tangent_face(f + 4 * i, u, c, r, 1);
+    }
+    CHECK(convex_bounds(f, N, lo, hi) == 0);
+    /* A pyramid: 4095 faces at 45 degrees through the apex (0, 0, 2), a
+     * base z >= 0. Its box: the apex and the base's disk of radius 2. */
+    const double apex[3] = {0, 0, 2};
+    for (int i = 0; i < N - 1; i++) {
+        double th = 2 * pi * i / (N - 1), u[3] = {cos(th), sin(th), 1};
+        vec3_unit(u, u);
+        tangent_face(f + 4 * i, u, apex, 0, 1);
+    }
+    const double base[4] = {0, 0, -1, 0};
+    memcpy(f + 4 * (N - 1), base, sizeof base);
+    CHECK(convex_bounds(f, N, lo, hi) == 1);
+    expect(fabs(hi[2] - 2) < 1e-8 && fabs(lo[2]) < 1e-8 && fabs(hi[0] - 2) < 1e-8 &&
+               fabs(lo[1] + 2) < 1e-5,
+           "pyramid [%.17g %.17g %.17g] [%.17g %.17g %.17g]", lo[0], lo[1], lo[2], hi[0],
+           hi[1], hi[2]);
+}
+
 static void test_convex_bounds(void)
 {
     double lo[3], hi[3];
@@ -238,21 +455,11 @@ static void test_convex_bounds(void)
                               {2, 3, 6, -6}};
     CHECK(convex_bounds(&tet[0][0], 4, lo, hi) == 1);
     CHECK(fabs(hi[0] - 3) < 1e-8 && fabs(hi[1] - 2) < 1e-8 && fabs(hi[2] - 1) < 1e-8);
-    /* Empty: x <= 0 and x >= 1 (with a closed box around): the point box. */
+    /* Empty: x <= 0 and x >= 1 (with a closed box around): no box, so
+     * tested by every ray, where it is never hit. */
     const double empty[6][4] = {{1, 0, 0, 0}, {-1, 0, 0, 1}, {0, -1, 0, -5},
                                 {0, 1, 0, -5}, {0, 0, -1, -5}, {0, 0, 1, -5}};
-    CHECK(convex_bounds(&empty[0][0], 6, lo, hi) == 1);
-    CHECK(lo[0] == 0 && hi[0] == 0 && lo[2] == 0 && hi[2] == 0);
-    /* More faces than CONVEX_MAX_FACES: left unbounded (tested by every ray). */
-    static double many[CONVEX_MAX_FACES + 1][4];
-    for (int i = 0; i <= CONVEX_MAX_FACES; i++) {
-        double th = 2 * pi * i / (CONVEX_MAX_FACES + 1);
-        many[i][0] = cos(th);
-        many[i][1] = sin(th);
-        many[i][2] = i % 2 ? 0.5 : -0.5;
-        many[i][3] = -1;
-    }
-    CHECK(convex_bounds(&many[0][0], CONVEX_MAX_FACES + 1, lo, hi) == 0);
+    CHECK(convex_bounds(&empty[0][0], 6, lo, hi) == 0);
     /* Scale: a tiny cube far away stays tight. */
     double far_cube[6][4];
     memcpy(far_cube, cube, sizeof cube);
@@ -394,6 +601,8 @@ int main(void)
     test_round_bounds();
     test_quadric_bounds();
     test_convex_bounds();
+    test_convex_against_oracle();
+    test_convex_many_faces();
     test_triangle_record();
     test_quadric_record();
     test_moved_records();
