@@ -94,7 +94,10 @@ static bool solve(struct lp *p, int d, unsigned free, const struct half *h, size
             x[l] = c[l] > 0 ? p->m : c[l] < 0 ? -p->m : 0;
     struct half *sub = p->work[d - 1];
     for (size_t i = 0; i < n; i++) {
-        if (vec3_dot(h[i].a, x) <= h[i].b + slack(&h[i], x))
+        /* No tolerance here: a point kept that a half-space excludes, by
+         * however little, is no longer the best of those before it, and
+         * the next plane's problem could then miss the best point. */
+        if (vec3_dot(h[i].a, x) <= h[i].b)
             continue;
         int k = -1; /* eliminate the coordinate the plane depends on most */
         for (int l = 0; l < 3; l++)
@@ -171,10 +174,16 @@ int convex_bounds(const double *f, size_t n, double lo[3], double hi[3])
             lo[a] = x[a];
     }
     free(h);
+    for (int a = 0; a < 3 && bounded; a++)
+        bounded = lo[a] <= hi[a]; /* else empty, but for rounding */
     if (!bounded)
         return 0;
+    /* Corners are found to about 1e-16 of the faces' distances from 0
+     * (a face that does not touch the polyhedron may lie much farther out
+     * than it) times how nearly parallel the faces are: the pad allows a
+     * factor of 1e4 for that. */
     for (int a = 0; a < 3; a++) {
-        double pad = CONVEX_TOL * (fabs(lo[a]) + fabs(hi[a]) + (hi[a] - lo[a]));
+        double pad = CONVEX_TOL * (fabs(lo[a]) + fabs(hi[a]) + (hi[a] - lo[a])) + 1e-12 * far;
         lo[a] -= pad;
         hi[a] += pad;
     }

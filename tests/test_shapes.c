@@ -376,6 +376,36 @@ static void test_convex_against_oracle(void)
            bounded, open, empty);
 }
 
+/* Ill-conditioned: faces up to 1.15e15 from 0 around a polyhedron about
+ * 2e9 across (found by a random search; its corners, computed in rational
+ * arithmetic from these doubles, give the box below, rounded to nearest).
+ * The box must hold it: corners lie about 100 units off in double here,
+ * which a pad of 1e-9 of the box alone (about 4 units) did not cover. */
+static void test_convex_ill_conditioned(void)
+{
+    const double f[8][4] = {
+        {-2497.9262366530315, 108.35541359617572, 0.035242146360025275, -2.8643988357656069e+18},
+        {0, -263481.69506371877, 0, 1.3602390983587313e-05},
+        {0.11059897057298618, 1.954461593773594e-68, -0.030662538707460708,
+         -0.00073808054199104981},
+        {1.7465200656387566e-06, 91929.939796462058, 7.8697657588723348e-06, -2665.0001454087633},
+        {-0.010512874662480848, 0.11070356410426065, -3748.4712117086492, 0.11404613350782342},
+        {5.3922431881273441e-264, 0, -0.46460792460956635, -0.0032167499479483913},
+        {-7.7967694385650997e-06, 0.00065503045955449897, -1.9422185028529131e-05,
+         -0.0049336077286206538},
+        {-2.004190796726172e-227, 0.6592541773733569, -3.5333174307445992e-06,
+         -5.5760304501232038e-05},
+    };
+    const double exact_lo[3] = {-1886474336.0210984, 5.16255635151345e-11, 3.0405965778206537e-05};
+    const double exact_hi[3] = {88442545.34871915, 0.028989274586877382, 757298959.6440297};
+    double lo[3], hi[3];
+    CHECK(convex_bounds(&f[0][0], 8, lo, hi) == 1);
+    for (int a = 0; a < 3; a++) /* and no side 1e-6 of its largest extent away */
+        expect(lo[a] <= exact_lo[a] && hi[a] >= exact_hi[a] && exact_lo[a] - lo[a] < 3e3 &&
+                   hi[a] - exact_hi[a] < 3e3,
+               "ill-conditioned, axis %d: [%.17g, %.17g]", a, lo[a], hi[a]);
+}
+
 /* Many faces: 4096 tangent planes of a sphere, its box within the
  * planes' covering angle (with the six axis planes among them: exact); the
  * same faces all leaning one way, or along a belt: unbounded; 4095 faces
@@ -603,6 +633,7 @@ int main(void)
     test_convex_bounds();
     test_convex_against_oracle();
     test_convex_many_faces();
+    test_convex_ill_conditioned();
     test_triangle_record();
     test_quadric_record();
     test_moved_records();
