@@ -36,20 +36,54 @@ vec3 texmap_color(int index, rvec3 p)
     return mix(top, bottom, fy);
 }
 
+// Whether x = (p + o) / size is that quotient without rounding: the sum's
+// rounding error (TwoSum) and x size's (Dekker's product, since fma need
+// not be fused on every device) are 0, and x size is the sum. `precise`
+// keeps compilers from reassociating or contracting them.
+#ifdef TP2_DOUBLE
+const real SPLIT = 134217729.0LF; // 2^27 + 1: halves of a double's digits
+#else
+const real SPLIT = 4097.0; // 2^12 + 1: halves of a float's digits
+#endif
+bool exact_quotient(real p, real o, real size, real x)
+{
+    precise real sum = p + o;
+    precise real o_part = sum - p;
+    precise real p_part = sum - o_part;
+    precise real sum_error = (p - p_part) + (o - o_part);
+    precise real xs = x * SPLIT;
+    precise real x_hi = xs - (xs - x);
+    precise real x_lo = x - x_hi;
+    precise real ss = size * SPLIT;
+    precise real s_hi = ss - (ss - size);
+    precise real s_lo = size - s_hi;
+    precise real product = x * size;
+    precise real product_error =
+        ((x_hi * s_hi - product) + x_hi * s_lo + x_lo * s_hi) + x_lo * s_lo;
+    return sum_error == 0.0 && product_error == 0.0 && product == sum;
+}
+
 // Whether p, which may be off by `doubt` along object's surface of normal
 // nf, may lie in another checker cell (signature.glsl): nearer a cell face
-// than that (a doubt of 0: none). A flat face along a cell face (nf an
-// axis, p exactly on it) lies there in both precisions. A curved one does
-// not, though its normal may round to an axis: a sphere's top touching a
-// cell face (../shared/corpus/test05.txt's floor, radius 100) has float's
-// hits there exactly on the face, double's a few millionths below it.
-bool unsure_cell(rvec3 x, rvec3 cell, real size, rvec3 nf, int object, float doubt)
+// than that (a doubt of 0: none); x = (p + o) / size, cell = floor(x). A
+// flat face along a cell face (nf an axis, p exactly on it) lies there in
+// both precisions, but only where x is exactly a whole number: x rounds
+// to one where p + o is far from 0 or size is not a float (a face at 0.3
+// under cells of 0.1: 3 in float, 2.9999999999999996 in double; one
+// 8571.0307 from 0 under cells of 0.03: 285701 and 285701.024). A curved
+// face does not, though its normal may round to an axis: a sphere's top
+// touching a cell face (../shared/corpus/test05.txt's floor, radius 100)
+// has float's hits there exactly on the face, double's a few millionths
+// below it.
+bool unsure_cell(rvec3 p, rvec3 o, real size, rvec3 x, rvec3 cell, rvec3 nf, int object,
+                 float doubt)
 {
     vec3 f = vec3(x - cell);
     vec3 margin = min(f, 1.0 - f) * float(size);
-    bvec3 exact = equal(abs(vec3(nf)), vec3(1.0));
+    bvec3 axis = equal(abs(vec3(nf)), vec3(1.0));
     for (int k = 0; k < 3; ++k)
-        if (margin[k] < doubt && !(exact[k] && f[k] == 0.0 && flat_kind(object)))
+        if (margin[k] < doubt && !(axis[k] && f[k] == 0.0 && flat_kind(object) &&
+                                   exact_quotient(p[k], o[k], size, x[k])))
             return true;
     return false;
 }
@@ -80,7 +114,8 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, int object, float doubt, inout 
         real k = cell.x + cell.y + cell.z;
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
         float moved = ROUNDING * float(max_abs(cube.yzw));
-        if (SIGNATURES && doubt > 0.0 && unsure_cell(x, cell, size, nf, object, doubt + moved))
+        if (SIGNATURES && doubt > 0.0 &&
+            unsure_cell(p, cube.yzw, size, x, cell, nf, object, doubt + moved))
             sig |= UNSURE;
         return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }
