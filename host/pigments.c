@@ -4,7 +4,8 @@
  *   solid     color1
  *   checker   color1 (even cells), color2 (odd), p.x = cube side,
  *             p.yzw = the packed origin (scene_pack.c), which the shader
- *             adds back: cells are the scene's
+ *             adds back: cells are the scene's; q.x = 1 where the side
+ *             is a float exactly (the same side in both precisions)
  *   gradient  color1 at point p, color2 at p + 1 / q: the color is
  *             mix(color1, color2, clamp((x - p) . q, 0, 1)),
  *             q = (p1 - p0) / |p1 - p0|^2
@@ -14,6 +15,7 @@
  * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,6 +58,7 @@ static void checker_pack(const struct scene_pigment *pg, struct pigment_record *
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
     memcpy(rec->color2, pg->color2, sizeof rec->color2);
     rec->p[0] = pg->scale;
+    rec->q[0] = pg->scale <= FLT_MAX && (double)(float)pg->scale == pg->scale;
 }
 
 /* Exact: the origin is a float, and p + origin in the shader puts a point

@@ -3,6 +3,7 @@
  * this file orders, counts and converts. */
 #include "scene_pack.h"
 
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -190,6 +191,29 @@ static void object_record(const struct scene *s, const struct layout *lay, size_
     ids[3] = (int32_t)*extra_at;
     kind->pack(p, o->count, ref->k, rec, extra + *extra_at);
     *extra_at += kind->extra_rows(p, o->count);
+}
+
+/* Whether v is a float exactly (the range test first: converting a
+ * double beyond float's range is undefined). */
+static bool is_float(double v)
+{
+    return fabs(v) <= FLT_MAX && (double)(float)v == v;
+}
+
+/* Whether every number of a record and its extra rows is a float exactly
+ * (TP2_SHAPE_INEXACT). */
+static bool record_is_float(const struct shape_record *rec, const double (*extra)[4],
+                            size_t nextra)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            if (!is_float(rec->row[r][c]))
+                return false;
+    for (size_t r = 0; r < nextra; r++)
+        for (int c = 0; c < 4; c++)
+            if (!is_float(extra[r][c]))
+                return false;
+    return true;
 }
 
 /* Slot's record and extra rows moved so that the layout's origin is 0. */

@@ -67,23 +67,27 @@ bool exact_quotient(real p, real o, real size, real x)
 // nf, may lie in another checker cell (signature.glsl): nearer a cell face
 // than that (a doubt of 0: none); x = (p + o) / size, cell = floor(x). A
 // flat face along a cell face (nf an axis, p exactly on it) lies there in
-// both precisions, but only where x is exactly a whole number: x rounds
-// to one where p + o is far from 0 or size is not a float (a face at 0.3
-// under cells of 0.1: 3 in float, 2.9999999999999996 in double; one
-// 8571.0307 from 0 under cells of 0.03: 285701 and 285701.024). A curved
-// face does not, though its normal may round to an axis: a sphere's top
-// touching a cell face (../shared/corpus/test05.txt's floor, radius 100)
-// has float's hits there exactly on the face, double's a few millionths
-// below it.
-bool unsure_cell(rvec3 p, rvec3 o, real size, rvec3 x, rvec3 cell, rvec3 nf, int object,
-                 float doubt)
+// both precisions where float's numbers are double's (the face's,
+// same_in_float, and the side's, `exact_side`, unless x is 0) and float
+// computed x without rounding: until 2026-11-30 any x that came out whole
+// counted,
+// and a face at 0.3 under cells of 0.1 (3 in float, 2.9999999999999996
+// in double), or one 8571.0307 from 0 under cells of 0.03 (x rounded to
+// 1/32 of a cell there) flipped whole faces. A curved face does not
+// count, though its normal may round to an axis: a sphere's top touching
+// a cell face (../shared/corpus/test05.txt's floor, radius 100) has
+// float's hits there exactly on the face, double's a few millionths below
+// it.
+bool unsure_cell(rvec3 p, rvec3 o, real size, bool exact_side, rvec3 x, rvec3 cell, rvec3 nf,
+                 int object, float doubt)
 {
     vec3 f = vec3(x - cell);
     vec3 margin = min(f, 1.0 - f) * float(size);
     bvec3 axis = equal(abs(vec3(nf)), vec3(1.0));
     for (int k = 0; k < 3; ++k)
-        if (margin[k] < doubt && !(axis[k] && f[k] == 0.0 && flat_kind(object) &&
-                                   exact_quotient(p[k], o[k], size, x[k])))
+        if (margin[k] < doubt &&
+            !(axis[k] && f[k] == 0.0 && flat_kind(object) && same_in_float(object) &&
+              (exact_side || x[k] == 0.0) && exact_quotient(p[k], o[k], size, x[k])))
             return true;
     return false;
 }
@@ -115,7 +119,8 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, int object, float doubt, inout 
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
         float moved = ROUNDING * float(max_abs(cube.yzw));
         if (SIGNATURES && doubt > 0.0 &&
-            unsure_cell(p, cube.yzw, size, x, cell, nf, object, doubt + moved))
+            unsure_cell(p, cube.yzw, size, pigment_q(index).x == 1.0, x, cell, nf, object,
+                        doubt + moved))
             sig |= UNSURE;
         return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }

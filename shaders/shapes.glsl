@@ -511,7 +511,14 @@ int shape_of(int i)
         return i < frame.geometry.x ? BOUNDED_SHAPE : UNBOUNDED_SHAPE;
     if (UNBOUNDED_SHAPE >= 0 && i >= frame.geometry.x)
         return UNBOUNDED_SHAPE;
-    return object_ids(i).x;
+    return object_ids(i).x & TP2_SHAPE_MASK;
+}
+
+// Whether object i's numbers are the same in float as in double
+// (TP2_SHAPE_INEXACT).
+bool same_in_float(int i)
+{
+    return (object_ids(i).x & TP2_SHAPE_INEXACT) == 0;
 }
 
 // Object i's nearest t > 0 and part (see the top of this file); graze:

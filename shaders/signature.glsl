@@ -109,7 +109,8 @@ HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
 // touch, make this margin tiny along the curve where they meet; where
 // float cannot tell them apart at all (margin 0) and both are flat, they
 // are faces that coincide (a box on the floor), which double cannot tell
-// apart either: the same object wins in both.
+// apart either: the same object wins in both (not so for faces that only
+// float cannot tell apart: README.TXT, Known limits).
 bool nearer_unsure(float margin, HitDoubt h, float t, float scale, bool both_flat)
 {
     return margin < 2.0 * ROUNDING * (scale + t) + h.pixels * h.width_along &&

@@ -165,6 +165,14 @@
 #define TP2_SHAPE_QUADRIC 7
 #define TP2_SHAPE_TRIANGLE 8
 
+/* Object.ids.x holds the shape kind in its low bits and, above them, this
+ * flag: some number of the object's record or extra rows is not a float,
+ * so float's surface may not be double's (a face at 0.3 lies at
+ * 0.30000001192092896 in float). shaders/pigments.glsl trusts a flat face
+ * to lie exactly on a cell face only without it. */
+#define TP2_SHAPE_MASK 0xffff
+#define TP2_SHAPE_INEXACT 0x10000
+
 /* Most faces of one polyhedron: its face count travels as a float, exact
  * to 2^24, and every ray that meets it loops over all of them. */
 #define TP2_MAX_FACES 4096
