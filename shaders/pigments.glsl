@@ -68,7 +68,7 @@ bool exact_quotient(real p, real o, real size, real x)
 // than that (a doubt of 0: none); x = (p + o) / size, cell = floor(x). A
 // flat face along a cell face (nf an axis, p exactly on it) lies there in
 // both precisions where float's numbers are double's (the face's,
-// same_in_float, and the side's, `exact_side`, unless x is 0) and float
+// same_in_float, and the side's, pigment_q.x, unless x is 0) and float
 // computed x without rounding: until 2026-11-30 any x that came out whole
 // counted,
 // and a face at 0.3 under cells of 0.1 (3 in float, 2.9999999999999996
@@ -78,17 +78,22 @@ bool exact_quotient(real p, real o, real size, real x)
 // a cell face (../shared/corpus/test05.txt's floor, radius 100) has
 // float's hits there exactly on the face, double's a few millionths below
 // it.
-bool unsure_cell(rvec3 p, rvec3 o, real size, bool exact_side, rvec3 x, rvec3 cell, rvec3 nf,
+bool unsure_cell(rvec3 p, rvec3 o, real size, int pigment, rvec3 x, rvec3 cell, rvec3 nf,
                  int object, float doubt)
 {
     vec3 f = vec3(x - cell);
     vec3 margin = min(f, 1.0 - f) * float(size);
     bvec3 axis = equal(abs(vec3(nf)), vec3(1.0));
-    for (int k = 0; k < 3; ++k)
-        if (margin[k] < doubt &&
-            !(axis[k] && f[k] == 0.0 && flat_kind(object) && same_in_float(object) &&
-              (exact_side || x[k] == 0.0) && exact_quotient(p[k], o[k], size, x[k])))
+    for (int k = 0; k < 3; ++k) {
+        if (!(margin[k] < doubt))
+            continue;
+        if (!(axis[k] && f[k] == 0.0 && flat_kind(object)))
             return true;
+        // Rare: loaded only here.
+        if (!(same_in_float(object) && (x[k] == 0.0 || pigment_q(pigment).x == 1.0) &&
+              exact_quotient(p[k], o[k], size, x[k])))
+            return true;
+    }
     return false;
 }
 
@@ -119,8 +124,7 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, int object, float doubt, inout 
         bool even = k - 2.0 * floor(k * 0.5) == 0.0;
         float moved = ROUNDING * float(max_abs(cube.yzw));
         if (SIGNATURES && doubt > 0.0 &&
-            unsure_cell(p, cube.yzw, size, pigment_q(index).x == 1.0, x, cell, nf, object,
-                        doubt + moved))
+            unsure_cell(p, cube.yzw, size, index, x, cell, nf, object, doubt + moved))
             sig |= UNSURE;
         return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }
