@@ -166,10 +166,11 @@
 #define TP2_SHAPE_TRIANGLE 8
 
 /* Object.ids.x holds the shape kind in its low bits and, above them, this
- * flag: some number of the object's record or extra rows is not a float,
- * so float's surface may not be double's (a face at 0.3 lies at
- * 0.30000001192092896 in float). shaders/pigments.glsl trusts a flat face
- * to lie exactly on a cell face only without it. */
+ * flag: some number of a flat object's record or extra rows is not a
+ * float, so float's surface may not be double's (a face at 0.3 lies at
+ * 0.30000001192092896 in float). Set in the float scene only;
+ * shaders/pigments.glsl trusts a flat face to lie exactly on a cell face
+ * only without it. */
 #define TP2_SHAPE_MASK 0xffff
 #define TP2_SHAPE_INEXACT 0x10000
 
