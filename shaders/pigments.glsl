@@ -65,19 +65,18 @@ bool exact_quotient(real p, real o, real size, real x)
 
 // Whether p, which may be off by `doubt` along object's surface of normal
 // nf, may lie in another checker cell (signature.glsl): nearer a cell face
-// than that (a doubt of 0: none); x = (p + o) / size, cell = floor(x). A
-// flat face along a cell face (nf an axis, p exactly on it) lies there in
-// both precisions where float's numbers are double's (the face's,
-// same_in_float, and the side's, pigment_q.x, unless x is 0) and float
-// computed x without rounding: until 2026-11-30 any x that came out whole
-// counted,
-// and a face at 0.3 under cells of 0.1 (3 in float, 2.9999999999999996
-// in double), or one 8571.0307 from 0 under cells of 0.03 (x rounded to
-// 1/32 of a cell there) flipped whole faces. A curved face does not
-// count, though its normal may round to an axis: a sphere's top touching
-// a cell face (../shared/corpus/test05.txt's floor, radius 100) has
-// float's hits there exactly on the face, double's a few millionths below
-// it.
+// than that (a doubt of 0: none); x = (p + o) / size, cell = floor(x).
+// A flat face along a cell face (nf an axis, p exactly on it) lies there
+// in both precisions where float's numbers are double's (the face's,
+// same_in_float; the side's, pigment_q.x, unless x is 0) and float
+// computed x without rounding. Until 2026-11-30 any x that came out whole
+// counted, and a face at 0.3 under cells of 0.1 (3 in float,
+// 2.9999999999999996 in double), or one 8571.0307 from 0 under cells of
+// 0.03 (x rounded to 1/32 of a cell there), flipped whole faces. A curved
+// face does not count, though its normal may round to an axis: a
+// sphere's top touching a cell face (../shared/corpus/test05.txt's floor,
+// radius 100) has float's hits there exactly on the face, double's a few
+// millionths below it.
 bool unsure_cell(rvec3 p, rvec3 o, real size, int pigment, rvec3 x, rvec3 cell, rvec3 nf,
                  int object, float doubt)
 {
