@@ -200,15 +200,6 @@ static bool is_float(double v)
     return fabs(v) <= FLT_MAX && (double)(float)v == v;
 }
 
-/* Whether GPU kind k is flat wherever a ray meets it (shapes.glsl's
- * flat_kind): only those have TP2_SHAPE_INEXACT set, in the float scene,
- * where the shader reads it. */
-static bool flat_kind(int32_t k)
-{
-    return k == TP2_SHAPE_PLANE || k == TP2_SHAPE_POLYHEDRON || k == TP2_SHAPE_BOX ||
-           k == TP2_SHAPE_TRIANGLE;
-}
-
 /* Whether every number of a record and its extra rows is a float exactly
  * (TP2_SHAPE_INEXACT). */
 static bool record_is_float(const struct shape_record *rec, const double (*extra)[4],

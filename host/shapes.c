@@ -646,12 +646,12 @@ const struct shape_kind shape_kinds[SHAPE_COUNT] = {
     [SHAPE_SPHERE] = {"sphere", TP2_SHAPE_SPHERE, sphere_read, one_primitive,
                       sphere_bounds, no_extra, sphere_pack, move_first_row},
     [SHAPE_PLANE] = {"plane", TP2_SHAPE_PLANE, plane_read, one_primitive, unbounded,
-                     no_extra, plane_pack, plane_move},
+                     no_extra, plane_pack, plane_move, .flat = true},
     [SHAPE_POLYHEDRON] = {"polyhedron", TP2_SHAPE_POLYHEDRON, polyhedron_read,
                           one_primitive, polyhedron_bounds, polyhedron_extra,
-                          polyhedron_pack, polyhedron_move},
+                          polyhedron_pack, polyhedron_move, .flat = true},
     [SHAPE_BOX] = {"box", TP2_SHAPE_BOX, box_read, one_primitive, box_bounds, no_extra,
-                   box_pack, box_move},
+                   box_pack, box_move, .flat = true},
     [SHAPE_CYLINDER] = {"cylinder", TP2_SHAPE_CYLINDER, cylinder_read, one_primitive,
                         cylinder_bounds, no_extra, cylinder_pack, move_first_row},
     [SHAPE_CONE] = {"cone", TP2_SHAPE_CONE, cone_read, one_primitive, cone_bounds,
@@ -661,9 +661,9 @@ const struct shape_kind shape_kinds[SHAPE_COUNT] = {
     [SHAPE_QUADRIC] = {"quadric", TP2_SHAPE_QUADRIC, quadric_read, one_primitive,
                        quadric_bounds, quadric_extra, quadric_pack, quadric_move},
     [SHAPE_TRIANGLE] = {"triangle", TP2_SHAPE_TRIANGLE, triangle_read, triangle_count,
-                        triangle_bounds, no_extra, triangle_pack, triangle_move},
+                        triangle_bounds, no_extra, triangle_pack, triangle_move, .flat = true},
     [SHAPE_MESH] = {"mesh", TP2_SHAPE_TRIANGLE, mesh_read, triangle_count,
-                    triangle_bounds, no_extra, triangle_pack, triangle_move},
+                    triangle_bounds, no_extra, triangle_pack, triangle_move, .flat = true},
 };
 
 double shape_extent(int k, const double *p, size_t n)

@@ -58,6 +58,9 @@ struct shape_kind {
      * `origin` becomes 0: points lose it, planes (unit normal, d) gain
      * n . origin. Directions and sizes stay. */
     void (*move)(struct shape_record *rec, double (*extra)[4], const double origin[3]);
+    /* Flat wherever a ray meets it (shapes.glsl's flat_kind): only flat
+     * kinds carry TP2_SHAPE_INEXACT. */
+    bool flat;
 };
 
 extern const struct shape_kind shape_kinds[SHAPE_COUNT];
