@@ -198,6 +198,15 @@ static void plane_move(struct shape_record *rec, double (*extra)[4], const doubl
     move_plane(rec->row[0], origin);
 }
 
+static size_t plane_faces(const struct shape_record *rec, const double (*extra)[4],
+                          double (*planes)[4])
+{
+    (void)extra;
+    if (planes)
+        memcpy(planes[0], rec->row[0], sizeof planes[0]);
+    return 1;
+}
+
 /* ---- polyhedron -------------------------------------------------------- */
 
 static int polyhedron_read(struct scene_reader *r)
@@ -241,6 +250,15 @@ static void polyhedron_move(struct shape_record *rec, double (*extra)[4],
         move_plane(extra[i], origin);
 }
 
+static size_t polyhedron_faces(const struct shape_record *rec, const double (*extra)[4],
+                               double (*planes)[4])
+{
+    size_t n = (size_t)rec->row[0][0];
+    if (planes)
+        memcpy(planes, extra, n * sizeof planes[0]);
+    return n;
+}
+
 /* ---- box --------------------------------------------------------------- */
 
 static int box_read(struct scene_reader *r)
@@ -279,6 +297,25 @@ static void box_move(struct shape_record *rec, double (*extra)[4], const double 
     (void)extra;
     move_point(rec->row[0], origin);
     move_point(rec->row[1], origin);
+}
+
+/* Faces -x + lo = 0 and x - hi = 0 per axis: clip_slab's (lo - o) / d is
+ * plane_t's arithmetic on them, sign for sign. */
+static size_t box_faces(const struct shape_record *rec, const double (*extra)[4],
+                        double (*planes)[4])
+{
+    (void)extra;
+    if (planes)
+        for (int a = 0; a < 3; a++) {
+            double *low = planes[2 * a], *high = planes[2 * a + 1];
+            memset(low, 0, sizeof planes[0]);
+            memset(high, 0, sizeof planes[0]);
+            low[a] = -1;
+            low[3] = rec->row[0][a];
+            high[a] = 1;
+            high[3] = -rec->row[1][a];
+        }
+    return 6;
 }
 
 /* ---- cylinder and cone ------------------------------------------------- */
@@ -597,6 +634,22 @@ static void triangle_pack(const double *p, size_t n, size_t k, struct shape_reco
         record_row(rec, i, t + 3 * i, normal[i]);
 }
 
+/* The plane of the packed corners and unit normal (0 faces for a
+ * degenerate one, which no ray meets). */
+static size_t triangle_faces(const struct shape_record *rec, const double (*extra)[4],
+                             double (*planes)[4])
+{
+    double n[3] = {rec->row[0][3], rec->row[1][3], rec->row[2][3]};
+    (void)extra;
+    if (!(vec3_max_abs(n) > 0))
+        return 0;
+    if (planes) {
+        memcpy(planes[0], n, sizeof n);
+        planes[0][3] = -vec3_dot(n, rec->row[0]);
+    }
+    return 1;
+}
+
 static void triangle_move(struct shape_record *rec, double (*extra)[4],
                           const double origin[3])
 {
@@ -644,26 +697,33 @@ static int mesh_read(struct scene_reader *r)
 
 const struct shape_kind shape_kinds[SHAPE_COUNT] = {
     [SHAPE_SPHERE] = {"sphere", TP2_SHAPE_SPHERE, sphere_read, one_primitive,
-                      sphere_bounds, no_extra, sphere_pack, move_first_row},
+                      sphere_bounds, no_extra, sphere_pack, move_first_row,
+                      .faces = NULL},
     [SHAPE_PLANE] = {"plane", TP2_SHAPE_PLANE, plane_read, one_primitive, unbounded,
-                     no_extra, plane_pack, plane_move, .flat = true},
+                     no_extra, plane_pack, plane_move, .faces = plane_faces,
+                     .met_as_planes = true},
     [SHAPE_POLYHEDRON] = {"polyhedron", TP2_SHAPE_POLYHEDRON, polyhedron_read,
                           one_primitive, polyhedron_bounds, polyhedron_extra,
-                          polyhedron_pack, polyhedron_move, .flat = true},
+                          polyhedron_pack, polyhedron_move, .faces = polyhedron_faces,
+                          .met_as_planes = true},
     [SHAPE_BOX] = {"box", TP2_SHAPE_BOX, box_read, one_primitive, box_bounds, no_extra,
-                   box_pack, box_move, .flat = true},
+                   box_pack, box_move, .faces = box_faces, .met_as_planes = true},
     [SHAPE_CYLINDER] = {"cylinder", TP2_SHAPE_CYLINDER, cylinder_read, one_primitive,
-                        cylinder_bounds, no_extra, cylinder_pack, move_first_row},
+                        cylinder_bounds, no_extra, cylinder_pack, move_first_row,
+                        .faces = NULL},
     [SHAPE_CONE] = {"cone", TP2_SHAPE_CONE, cone_read, one_primitive, cone_bounds,
-                    no_extra, cone_pack, move_first_row},
+                    no_extra, cone_pack, move_first_row, .faces = NULL},
     [SHAPE_TORUS] = {"torus", TP2_SHAPE_TORUS, torus_read, one_primitive, torus_bounds,
-                     no_extra, torus_pack, move_first_row},
+                     no_extra, torus_pack, move_first_row, .faces = NULL},
     [SHAPE_QUADRIC] = {"quadric", TP2_SHAPE_QUADRIC, quadric_read, one_primitive,
-                       quadric_bounds, quadric_extra, quadric_pack, quadric_move},
+                       quadric_bounds, quadric_extra, quadric_pack, quadric_move,
+                       .faces = NULL},
     [SHAPE_TRIANGLE] = {"triangle", TP2_SHAPE_TRIANGLE, triangle_read, triangle_count,
-                        triangle_bounds, no_extra, triangle_pack, triangle_move, .flat = true},
+                        triangle_bounds, no_extra, triangle_pack, triangle_move,
+                        .faces = triangle_faces, .met_as_planes = false},
     [SHAPE_MESH] = {"mesh", TP2_SHAPE_TRIANGLE, mesh_read, triangle_count,
-                    triangle_bounds, no_extra, triangle_pack, triangle_move, .flat = true},
+                    triangle_bounds, no_extra, triangle_pack, triangle_move,
+                    .faces = triangle_faces, .met_as_planes = false},
 };
 
 double shape_extent(int k, const double *p, size_t n)

@@ -58,9 +58,17 @@ struct shape_kind {
      * `origin` becomes 0: points lose it, planes (unit normal, d) gain
      * n . origin. Directions and sizes stay. */
     void (*move)(struct shape_record *rec, double (*extra)[4], const double origin[3]);
-    /* Flat wherever a ray meets it (shapes.glsl's flat_kind): only flat
-     * kinds carry TP2_SHAPE_INEXACT. */
-    bool flat;
+    /* Flat kinds (flat wherever a ray meets them: shapes.glsl's
+     * flat_kind) list the planes of a packed record's faces (unit normal,
+     * d: n.x + d = 0), filling `planes` unless it is NULL, and return how
+     * many; NULL for curved kinds. Only flat kinds carry TP2_SHAPE_INEXACT
+     * and TP2_SHAPE_NEAR_TWIN (twins.h). */
+    size_t (*faces)(const struct shape_record *rec, const double (*extra)[4],
+                    double (*planes)[4]);
+    /* The shader meets each face with plane_t's arithmetic, so that faces
+     * on equal planes give equal distances in either precision; a
+     * triangle is met through its corners instead. */
+    bool met_as_planes;
 };
 
 extern const struct shape_kind shape_kinds[SHAPE_COUNT];
