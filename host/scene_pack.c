@@ -17,6 +17,7 @@
 #include "pigments.h"
 #include "retrace.h"
 #include "shapes.h"
+#include "twins.h"
 #include "vec3.h"
 
 /* Fewer bounded objects than this are tested in a plain loop: on
@@ -52,6 +53,14 @@ struct layout {
     size_t *texel_offset;     /* per texture: its first texel */
     int bounded_kinds, unbounded_kinds; /* bit TP2_SHAPE_k: kind k among them */
     int samples;
+    /* --precision auto's near twins (twins.h): per slot, whether it has
+     * one (TP2_SHAPE_NEAR_TWIN); the search, NULL where there is none to
+     * find; the object whose faces the float pack compares as it packs
+     * them, and room for one primitive's faces. */
+    bool *near_twin;
+    struct twins *twins;
+    size_t twins_streamed;
+    double (*twin_planes)[4];
 };
 
 /* The parser has rejected eye == center and up parallel to the view. */
@@ -222,6 +231,128 @@ static void move_record(const struct scene *s, const struct layout *lay, size_t 
 {
     const struct scene_object *o = &s->objects[lay->slots[slot].object];
     shape_kinds[o->kind].move(rec, extra, lay->origin);
+}
+
+/* The largest coordinate magnitude of the eye, the lights and the
+ * bounded objects' box, from the layout's origin (twins.h's scale). */
+static double layout_scale(const struct scene *s, const struct layout *lay)
+{
+    double m = vec3_max_abs(lay->eye);
+    for (size_t i = 1; i < s->nlights; i++) {
+        double pos[3];
+        vec3_sub(s->lights[i].pos, lay->origin, pos);
+        m = fmax(m, vec3_max_abs(pos));
+    }
+    if (lay->bvh.node_count > 0)
+        for (int a = 0; a < 3; a++)
+            m = fmax(m, fmax(fabs(lay->bvh.nodes[0].lo[a]), fabs(lay->bvh.nodes[0].hi[a])));
+    return m;
+}
+
+/* The faces of a packed flat primitive, in lay->twin_planes; how many. */
+static size_t packed_faces(const struct scene *s, const struct layout *lay, size_t slot,
+                           const struct shape_record *rec, const double (*extra)[4],
+                           struct twin_face *face)
+{
+    size_t owner = lay->slots[slot].object;
+    const struct shape_kind *kind = &shape_kinds[s->objects[owner].kind];
+    *face = (struct twin_face){.owner = (uint32_t)owner, .slot = (uint32_t)slot,
+                               .met_as_plane = kind->met_as_planes};
+    return kind->faces(rec, extra, lay->twin_planes);
+}
+
+/* Compares a packed primitive of the streamed object with the search. */
+static void compare_packed(const struct scene *s, const struct layout *lay, size_t slot,
+                           const struct shape_record *rec, const double (*extra)[4])
+{
+    struct twin_face f;
+    size_t count = packed_faces(s, lay, slot, rec, extra, &f);
+    for (size_t i = 0; i < count; i++) {
+        memcpy(f.plane, lay->twin_planes[i], sizeof f.plane);
+        twins_compare(lay->twins, &f, lay->near_twin);
+    }
+}
+
+/* Starts the search for near twins (twins.h): every flat object's faces
+ * go into it, but the faces of the one of most primitives (a mesh of a
+ * million triangles), which the float pack compares as it packs them
+ * (twins_streamed); the others are compared here. With fewer than two
+ * flat objects there is nothing to find, and no search. */
+static int twins_start(const struct scene *s, struct layout *lay)
+{
+    size_t *prims = calloc(s->nobjects ? s->nobjects : 1, sizeof *prims);
+    size_t flat = 0, streamed = 0;
+    if (!prims)
+        return -1;
+    for (size_t slot = 0; slot < lay->nprims; slot++) {
+        size_t o = lay->slots[slot].object;
+        if (shape_kinds[s->objects[o].kind].faces) {
+            flat += prims[o]++ == 0;
+            if (prims[o] > prims[streamed])
+                streamed = o;
+        }
+    }
+    free(prims);
+    if (flat < 2)
+        return 0;
+    lay->twins_streamed = streamed;
+    lay->near_twin = calloc(lay->nprims, sizeof *lay->near_twin);
+    /* an object's extra rows (at most a polyhedron's faces), its planes */
+    double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
+    lay->twin_planes = malloc(TP2_MAX_FACES * sizeof *lay->twin_planes);
+    struct twin_face *faces = NULL;
+    size_t n = 0, cap = 0;
+    double scale = layout_scale(s, lay);
+    int rc = lay->near_twin && rows && lay->twin_planes ? 0 : -1;
+    for (size_t slot = 0; rc == 0 && slot < lay->nprims; slot++) {
+        size_t o = lay->slots[slot].object;
+        if (!shape_kinds[s->objects[o].kind].faces || o == streamed)
+            continue;
+        struct shape_record rec;
+        size_t extra_at = 0;
+        int32_t ids[4];
+        object_record(s, lay, slot, &rec, rows, &extra_at, ids);
+        if (lay->moved)
+            move_record(s, lay, slot, &rec, rows);
+        struct twin_face f;
+        size_t count = packed_faces(s, lay, slot, &rec, (const double (*)[4])rows, &f);
+        if (n + count > cap) {
+            size_t more = 2 * cap + count + 64;
+            struct twin_face *grown = realloc(faces, more * sizeof *faces);
+            if (!grown) {
+                rc = -1;
+                break;
+            }
+            faces = grown;
+            cap = more;
+        }
+        for (size_t i = 0; i < count; i++) {
+            memcpy(f.plane, lay->twin_planes[i], sizeof f.plane);
+            faces[n++] = f;
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        scale = fmax(scale, fabs(faces[i].plane[3]));
+    if (rc == 0 && !(lay->twins = twins_new(faces, n, scale)))
+        rc = -1;
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        twins_compare(lay->twins, &faces[i], lay->near_twin);
+    free(faces);
+    free(rows);
+    return rc;
+}
+
+/* Ends the search: TP2_SHAPE_NEAR_TWIN on every slot that has a near twin
+ * in the float scene `objects`. */
+static void twins_end(struct layout *lay, struct gpu_object_f *objects)
+{
+    if (!lay->twins)
+        return;
+    twins_finish(lay->twins, lay->near_twin);
+    lay->twins = NULL;
+    for (size_t slot = 0; objects && slot < lay->nprims; slot++)
+        if (lay->near_twin[slot])
+            objects[slot].ids[0] |= TP2_SHAPE_NEAR_TWIN;
 }
 
 #define TP2_REAL float
@@ -495,6 +626,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     free(bounded);
     if (rc == 0)
         rc = layout_texels(s, &lay);
+    if (rc == 0 && twin && !opt->use_double)
+        rc = twins_start(s, &lay);
     /* The twin (--precision auto's double scene) is packed beside the
      * rest: for a million spheres it is 128 MB of its own. Without a
      * twin the nodes go beside instead (52 MB there), but for a small
@@ -510,6 +643,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         side_start(&nodes_job, pack_nodes);
     if (rc == 0)
         rc = opt->use_double ? pack_d(s, &lay, opt, out) : pack_f(s, &lay, opt, out);
+    twins_end(&lay, rc == 0 ? out->data[TP2_BINDING_OBJECTS] : NULL);
     if (rc == 0 && !nodes_beside)
         rc = pack_bvh(&lay.bvh, out);
     if (rc == 0)
@@ -521,6 +655,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     bvh_free(&lay.bvh);
     free(lay.slots);
     free(lay.texel_offset);
+    free(lay.near_twin);
+    free(lay.twin_planes);
     if (rc != 0) {
         packed_scene_free(out);
         if (twin)

@@ -611,6 +611,18 @@ bool flat_kind(int i)
            kind == TP2_SHAPE_TRIANGLE;
 }
 
+// Whether crossings of objects a and b that float finds at one distance
+// are on faces that coincide in double too (a box on the floor), so that
+// the same object wins in both: both flat, and neither has a face near
+// another object's face without being on its plane (a box top at 0.3
+// under a plane at 0.3000000001: TP2_SHAPE_NEAR_TWIN, host/twins.h).
+// b < 0: no second crossing.
+bool coincident_faces(int a, int b)
+{
+    return b >= 0 && flat_kind(a) && flat_kind(b) &&
+           ((object_ids(a).x | object_ids(b).x) & TP2_SHAPE_NEAR_TWIN) == 0;
+}
+
 // Whether a ray through object i's surface goes into an inside (a
 // triangle has none: transmitted rays go on unbent).
 bool has_inside(int i)

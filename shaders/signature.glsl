@@ -106,15 +106,12 @@ HitDoubt doubt_at(vec4 doubt, float t, float scale, float cosine, float bend)
 // within what the two distances may be off: each has the fresh rounding
 // of its intersection, and the ray's own doubt moves them apart by up to
 // its width times the grazing spread. Two surfaces that cross, or nearly
-// touch, make this margin tiny along the curve where they meet; where
-// float cannot tell them apart at all (margin 0) and both are flat, they
-// are faces that coincide (a box on the floor), which double cannot tell
-// apart either: the same object wins in both (not so for faces that only
-// float cannot tell apart: README.TXT, Known limits).
-bool nearer_unsure(float margin, HitDoubt h, float t, float scale, bool both_flat)
+// touch, make this margin tiny along the curve where they meet. Margin 0
+// on faces that coincide in double too is sure (shapes.glsl,
+// coincident_faces: the caller tests it).
+bool nearer_unsure(float margin, HitDoubt h, float t, float scale)
 {
-    return margin < 2.0 * ROUNDING * (scale + t) + h.pixels * h.width_along &&
-           (margin > 0.0 || !both_flat);
+    return margin < 2.0 * ROUNDING * (scale + t) + h.pixels * h.width_along;
 }
 
 // How far, in pixels, boundaries beyond the ray's origin may move.

@@ -173,6 +173,13 @@
  * only without it. */
 #define TP2_SHAPE_MASK 0xffff
 #define TP2_SHAPE_INEXACT 0x10000
+/* And this one: some face of the flat object lies so near another
+ * object's face, without being on the same plane, that float may find
+ * both at one distance where double does not (host/twins.h). Set in the
+ * float scene of --precision auto only; shaders/shapes.glsl's
+ * coincident_faces takes equal distances for coincident faces only
+ * without it. */
+#define TP2_SHAPE_NEAR_TWIN 0x20000
 
 /* Most faces of one polyhedron: its face count travels as a float, exact
  * to 2^24, and every ray that meets it loops over all of them. */

@@ -125,9 +125,9 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     decided(sig, uint(h.part));
     if (at_stake(stake) && cosine < hd.angle) // entering or leaving
         sig |= UNSURE;
-    if (at_stake(stake) && nearer_unsure(float(h.next - h.t), hd, float(h.t), sizes,
-                                          h.next_object >= 0 && flat_kind(h.object) &&
-                                              flat_kind(h.next_object)))
+    float margin = float(h.next - h.t);
+    if (at_stake(stake) && nearer_unsure(margin, hd, float(h.t), sizes) &&
+        (margin > 0.0 || !coincident_faces(h.object, h.next_object)))
         sig |= UNSURE; // which of two crossings is nearer
     rvec3 nf = entering ? n : -n;
     rvec3 offset = nf * (scale * TP2_REL_EPS);
