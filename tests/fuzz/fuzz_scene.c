@@ -8,6 +8,7 @@
  * could name a device or a kernel file (any "dev/", "proc/" or "sys/")
  * is skipped: /dev/zero or /dev/stdin as a texture would only measure the
  * machine. Also built into fuzz_replay_scene (tests/fuzz/replay.c). */
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,8 +53,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         null_out = fopen("/dev/null", "w");
     if (null_out)
         scene_write_json(&s, null_out);
-    /* Both precisions, the BVH forced on or left to its threshold: which
-     * one is picked from the input's length, so each input replays alike. */
+    /* Both precisions, the BVH forced on or left to its threshold, a
+     * double twin (--precision auto: near twins searched) or none: which
+     * is picked from the input's length, so each input replays alike. */
     struct pack_options opt = {
         .width = s.has_size ? s.width : 400,
         .height = s.has_size ? s.height : 300,
@@ -61,12 +63,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         .bvh_min = size & 2 ? 1 : 0,
         .bailout = 1.0 / 255,
     };
-    struct packed_scene p;
-    if (scene_pack(&s, &opt, &p, NULL) == 0) {
+    struct packed_scene p, twin;
+    bool with_twin = size & 4 && !opt.use_double;
+    if (scene_pack(&s, &opt, &p, with_twin ? &twin : NULL) == 0) {
         for (int b = 0; b < TP2_INPUT_BUFFERS; b++)
             if (!p.data[b] || p.size[b] == 0)
                 abort(); /* every buffer holds at least one element */
         packed_scene_free(&p);
+        if (with_twin)
+            packed_scene_free(&twin);
     }
     scene_free(&s);
     return 0;
