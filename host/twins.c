@@ -8,7 +8,9 @@
  * look in one. A normal whose two largest components are nearly equal
  * could be oriented either way, so such a face looks for both. A cell
  * of one object's faces only is passed over by that object's faces, so a
- * mesh's triangles are not compared with each other. */
+ * mesh's triangles are not compared with each other. In front of the
+ * cells, a bitmap of the normals within reach turns most faces away on
+ * one bit, and a search of a few faces is walked whole instead. */
 #include "twins.h"
 
 #include <math.h>
