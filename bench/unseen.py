@@ -3,7 +3,7 @@
 
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
                             [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
-                            [--sphere-floor] [--open] [--reuse-exact]
+                            [--sphere-floor] [--open] [--touching] [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
 every bounded kind, the quadric and a floor plane; mirrors and glass of
@@ -34,11 +34,16 @@ polyhedron (a half-space, as the original course's files write floors),
 an unbounded polyhedron (a three-face wedge or a five-face open box, open
 along a random direction) and a triangle mesh (a lumpy ball or a wavy
 sheet of 170-840 triangles, written as unseen-mesh-SEED.obj beside the
-scene)."""
+scene). --touching adds, from a stream of its own, flat faces resting on
+others or a hair off them (0, +-1e-10 of the coordinate, one float step,
+1e-7 or 1e-5): boxes on the floor and on a box, a triangle and a plane
+on a box's top, a half-space wall against a box's side, a tilted slab
+with a triangle on its top (host/twins.c's cases)."""
 import argparse
 import math
 import os
 import random
+import struct
 import subprocess
 import sys
 import tempfile
@@ -63,10 +68,12 @@ def write_texture(folder):
         f.write(b"P6\n16 16\n255\n" + rows)
 
 
-def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=None):
-    """Scene text for seed (deterministic); extras, sphere_floor and
-    open_shapes: see --extras, --sphere-floor and --open. The files the
-    scene names (a mesh's OBJ) go into `files`, name -> text."""
+def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=None,
+               touching=False):
+    """Scene text for seed (deterministic); extras, sphere_floor,
+    open_shapes and touching: see --extras, --sphere-floor, --open and
+    --touching. The files the scene names (a mesh's OBJ) go into
+    `files`, name -> text."""
     r = random.Random(seed)
     scale = r.choice([1, 1, 1, 1e-3, 1e2, 1e4])
     off = [r.choice([0, 0, r.uniform(-1, 1) * 1e4 * scale]) for _ in range(3)]
@@ -159,6 +166,10 @@ def make_scene(seed, extras=False, sphere_floor=False, open_shapes=False, files=
     if open_shapes:
         add_open_shapes(random.Random(seed + 3 * 10 ** 6), seed, scale, off, len(pigments),
                         len(finishes), objects, {} if files is None else files)
+    if touching:
+        add_touching(random.Random(seed + 4 * 10 ** 6), scale, off,
+                     -float(f"{1.5 * scale - off[1]:.9g}"), len(pigments), len(finishes),
+                     objects)
     directives = []
     if extras:
         directives = add_extras(random.Random(seed + 10 ** 6), scale, off, dist, nl,
@@ -188,6 +199,68 @@ def add_open_shapes(r, seed, scale, off, npigments, nfinishes, objects, files):
     write_mesh = lumpy_ball if r.random() < 0.5 else wavy_sheet
     files[name] = "\n".join(write_mesh(r, at, center, size)) + "\n"
     objects.append(head() + f"mesh {name}")
+
+
+def float_step(y):
+    """The next float (32-bit) above y's float: one step of float's grid."""
+    bits = struct.unpack("<i", struct.pack("<f", y))[0]
+    up = bits + 1 if y >= 0 else bits - 1
+    return struct.unpack("<f", struct.pack("<i", up))[0] - struct.unpack("<f", struct.pack("<f", y))[0]
+
+
+def add_touching(r, scale, off, floor_y, npigments, nfinishes, objects):
+    """--touching: flat faces resting on others, or a hair off them (0,
+    +-1e-10 of the coordinate, one float step, 1e-7 or 1e-5): boxes on
+    the floor, a box on a box, a triangle and a plane on a box's top, a
+    half-space wall against a box's side, a tilted slab with a triangle
+    on its top. Numbers written in full (17 digits)."""
+    def head():
+        return f"{r.randrange(npigments)} {r.randrange(nfinishes)} "
+
+    def gap(y):
+        m = max(abs(y), scale)
+        return r.choice([0, 0, 1e-10 * m, -1e-10 * m, float_step(y), 1e-7 * m, 1e-5 * m])
+
+    def g(*v):
+        return " ".join(f"{x:.17g}" for x in v)
+
+    boxes = []
+    for _ in range(r.randint(1, 3)):
+        x, z = (r.uniform(-4, 4) * scale + off[k] for k in (0, 2))
+        w, h = r.uniform(0.5, 2) * scale, r.uniform(0.3, 2) * scale
+        y = floor_y + gap(floor_y)
+        boxes.append((x, y, z, x + w, y + h, z + w))
+    if r.random() < 0.6:  # a smaller box on the first
+        x0, _, z0, x1, top, z1 = boxes[0]
+        y = top + gap(top)
+        boxes.append((x0 + (x1 - x0) / 4, y, z0 + (z1 - z0) / 4, x1, y + (top - boxes[0][1]), z1))
+    for b in boxes:
+        objects.append(head() + "box " + g(*b))
+    x0, _, z0, x1, top, z1 = boxes[0]
+    if r.random() < 0.6:  # a triangle over part of the first box's top
+        y = top + gap(top)
+        objects.append(head() + "triangle " + g(x0, y, z0, x1 + (x1 - x0), y, z0,
+                                              x0, y, z1 + (z1 - z0)))
+    if r.random() < 0.3:  # a plane at the first box's top
+        objects.append(head() + f"plane 0 1 0 {-(top + gap(top)):.17g}")
+    if r.random() < 0.5:  # a half-space wall against the first box's high x side
+        objects.append(head() + f"polyhedron 1\n1 0 0 {-(x1 + gap(x1)):.17g}")
+    if r.random() < 0.5:  # a tilted slab, a triangle on its top
+        n = list(unit([r.uniform(-0.3, 0.3), 1, r.uniform(-0.3, 0.3)]))
+        c = [r.uniform(-3, 3) * scale + off[0], floor_y + r.uniform(0.5, 2) * scale,
+             r.uniform(-3, 3) * scale + off[2]]
+        w = r.uniform(0.5, 1.5) * scale
+        d = -sum(n[k] * c[k] for k in range(3))  # top face: n.x + d = 0 through c
+        u = unit(cross(n, [1, 0, 0]))
+        v = cross(n, u)
+        faces = [n + [d], [-x for x in n] + [-d - w / 2]]
+        for e in (u, v, [-x for x in u], [-x for x in v]):
+            faces.append(list(e) + [-sum(e[k] * c[k] for k in range(3)) - w])
+        objects.append(head() + "polyhedron 6\n" + "\n".join(g(*f) for f in faces))
+        lift = gap(max(abs(x) for x in c))
+        corners = [[c[k] + lift * n[k] + a * w * u[k] + b * w * v[k] for k in range(3)]
+                   for a, b in ((-0.5, -0.5), (1.5, -0.2), (-0.2, 1.5))]
+        objects.append(head() + "triangle " + g(*corners[0], *corners[1], *corners[2]))
 
 
 def open_polyhedron(r, at, scale):
@@ -323,6 +396,8 @@ def main():
                     help="the floor a sphere of radius 100-1000 touching the plane's place")
     ap.add_argument("--open", action="store_true",
                     help="half-space floors, unbounded polyhedra and a mesh too")
+    ap.add_argument("--touching", action="store_true",
+                    help="flat faces on others or a hair off them (boxes, triangles, planes)")
     args = ap.parse_args()
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
     os.makedirs(folder, exist_ok=True)
@@ -334,7 +409,8 @@ def main():
         scene = os.path.join(folder, f"s{seed}.txt")
         files = {}
         with open(scene, "w") as f:
-            f.write(make_scene(seed, args.extras, args.sphere_floor, args.open, files))
+            f.write(make_scene(seed, args.extras, args.sphere_floor, args.open, files,
+                               args.touching))
         for name, text in files.items():
             with open(os.path.join(folder, name), "w") as f:
                 f.write(text)
