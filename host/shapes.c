@@ -202,8 +202,7 @@ static size_t plane_faces(const struct shape_record *rec, const double (*extra)[
                           double (*planes)[4])
 {
     (void)extra;
-    if (planes)
-        memcpy(planes[0], rec->row[0], sizeof planes[0]);
+    memcpy(planes[0], rec->row[0], sizeof planes[0]);
     return 1;
 }
 
@@ -254,8 +253,7 @@ static size_t polyhedron_faces(const struct shape_record *rec, const double (*ex
                                double (*planes)[4])
 {
     size_t n = (size_t)rec->row[0][0];
-    if (planes)
-        memcpy(planes, extra, n * sizeof planes[0]);
+    memcpy(planes, extra, n * sizeof planes[0]);
     return n;
 }
 
@@ -305,16 +303,15 @@ static size_t box_faces(const struct shape_record *rec, const double (*extra)[4]
                         double (*planes)[4])
 {
     (void)extra;
-    if (planes)
-        for (int a = 0; a < 3; a++) {
-            double *low = planes[2 * a], *high = planes[2 * a + 1];
-            memset(low, 0, sizeof planes[0]);
-            memset(high, 0, sizeof planes[0]);
-            low[a] = -1;
-            low[3] = rec->row[0][a];
-            high[a] = 1;
-            high[3] = -rec->row[1][a];
-        }
+    for (int a = 0; a < 3; a++) {
+        double *low = planes[2 * a], *high = planes[2 * a + 1];
+        memset(low, 0, sizeof planes[0]);
+        memset(high, 0, sizeof planes[0]);
+        low[a] = -1;
+        low[3] = rec->row[0][a];
+        high[a] = 1;
+        high[3] = -rec->row[1][a];
+    }
     return 6;
 }
 
@@ -643,10 +640,8 @@ static size_t triangle_faces(const struct shape_record *rec, const double (*extr
     (void)extra;
     if (!(vec3_max_abs(n) > 0))
         return 0;
-    if (planes) {
-        memcpy(planes[0], n, sizeof n);
-        planes[0][3] = -vec3_dot(n, rec->row[0]);
-    }
+    memcpy(planes[0], n, sizeof n);
+    planes[0][3] = -vec3_dot(n, rec->row[0]);
     return 1;
 }
 

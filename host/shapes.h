@@ -60,7 +60,7 @@ struct shape_kind {
     void (*move)(struct shape_record *rec, double (*extra)[4], const double origin[3]);
     /* Flat kinds (flat wherever a ray meets them: shapes.glsl's
      * flat_kind) list the planes of a packed record's faces (unit normal,
-     * d: n.x + d = 0), filling `planes` unless it is NULL, and return how
+     * d: n.x + d = 0) in `planes` (room for TP2_MAX_FACES) and return how
      * many; NULL for curved kinds. Only flat kinds carry TP2_SHAPE_INEXACT
      * and TP2_SHAPE_NEAR_TWIN (twins.h). */
     size_t (*faces)(const struct shape_record *rec, const double (*extra)[4],
