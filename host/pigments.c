@@ -15,11 +15,11 @@
  * Points are packed from the origin (each kind's move). */
 #include "pigments.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "float_exact.h"
 #include "scene_json.h"
 #include "texture.h"
 #include "tp2_shared.h"
@@ -58,7 +58,7 @@ static void checker_pack(const struct scene_pigment *pg, struct pigment_record *
     memcpy(rec->color1, pg->color1, sizeof rec->color1);
     memcpy(rec->color2, pg->color2, sizeof rec->color2);
     rec->p[0] = pg->scale;
-    rec->q[0] = pg->scale <= FLT_MAX && (double)(float)pg->scale == pg->scale;
+    rec->q[0] = is_float(pg->scale);
 }
 
 /* Exact: the origin is a float, and p + origin in the shader puts a point

@@ -3,7 +3,6 @@
  * this file orders, counts and converts. */
 #include "scene_pack.h"
 
-#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -13,6 +12,7 @@
 #include "big_alloc.h"
 #include "bvh.h"
 #include "clock.h"
+#include "float_exact.h"
 #include "gpu_layout.h"
 #include "pigments.h"
 #include "retrace.h"
@@ -200,13 +200,6 @@ static void object_record(const struct scene *s, const struct layout *lay, size_
     ids[3] = (int32_t)*extra_at;
     kind->pack(p, o->count, ref->k, rec, extra + *extra_at);
     *extra_at += kind->extra_rows(p, o->count);
-}
-
-/* Whether v is a float exactly (the range test first: converting a
- * double beyond float's range is undefined). */
-static bool is_float(double v)
-{
-    return fabs(v) <= FLT_MAX && (double)(float)v == v;
 }
 
 /* Whether every number of a record and its extra rows is a float exactly

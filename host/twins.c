@@ -79,6 +79,13 @@ static int32_t cell_coord(double v, double per_cell, double *fraction)
     return k;
 }
 
+/* -1 or 1 where a cell's fraction lies within `edge` of its low or high
+ * side (the neighbour across it may hold a near value), else 0. */
+static int side_within(double fraction, double edge)
+{
+    return fraction < edge ? -1 : 1 - fraction < edge ? 1 : 0;
+}
+
 static uint64_t cell_key(const int32_t k[4])
 {
     uint64_t key = 0;
@@ -105,9 +112,9 @@ static void turn_to(struct twins *t, const double n[3])
 {
     int reach[3];
     for (int a = 0; a < 3; a++) {
-        double fraction, edge = 1.01 * TWIN_TOLERANCE * COARSE / 2.0;
+        double fraction;
         cell_coord(n[a] + 1, COARSE / 2.0, &fraction);
-        reach[a] = fraction < edge ? -1 : 1 - fraction < edge ? 1 : 0;
+        reach[a] = side_within(fraction, 1.01 * TWIN_TOLERANCE * COARSE / 2.0);
     }
     for (int m = 0; m < 8; m++) {
         int step[3];
@@ -228,9 +235,9 @@ static void compare_oriented(const struct twins *t, const struct twin_face *f, c
 {
     int32_t k[4], step[4];
     for (int a = 0; a < 4; a++) {
-        double fraction, reach = 1.01 / CELL;
+        double fraction;
         k[a] = cell_coord(p[a], t->per_cell[a], &fraction);
-        step[a] = fraction < reach ? -1 : 1 - fraction < reach ? 1 : 0;
+        step[a] = side_within(fraction, 1.01 / CELL);
     }
     for (int m = 0; m < 16; m++) {
         int32_t at[4];
