@@ -18,6 +18,7 @@
 #include "progress.h"
 #include "retrace.h"
 #include "scene_pack.h"
+#include "spirv_exact.h"
 #include "spirv_fused.h"
 #include "spirv_specialize.h"
 #include "tp2_shared.h"
@@ -82,9 +83,9 @@ static double eager_retrace_samples(void)
  * retrace pass, under auto only, traces the listed pixels in double. */
 struct tracer {
     bool use_double, signatures, pixel_list;
-    const uint32_t *code; /* its SPIR-V: a build of CMakeLists.txt's, or fused */
+    const uint32_t *code; /* its SPIR-V: a build of CMakeLists.txt's, or rewritten */
     size_t words;
-    uint32_t *fused; /* owned: under TP2_FUSED, the rewritten code */
+    uint32_t *rewritten; /* owned: the double build made exact, or fused (choose_code) */
     VkPipeline pipelines[TP2_WALK_KINDS]; /* by TP2_WALK_*, made when needed */
     VkDescriptorSet set;
     VkBufferView views[TP2_BINDING_COUNT]; /* its texel buffers' */
@@ -430,6 +431,26 @@ static int create_layouts(struct renderer *r)
     return 0;
 }
 
+/* Pass t's code rewritten by `pass` (spirv_exact or spirv_fused), which
+ * t then owns. Returns the pass's count of sites, or (size_t)-1 after
+ * saying `doing` failed. */
+static size_t rewrite(struct tracer *t,
+                      uint32_t *(*pass)(const uint32_t *, size_t, size_t *, size_t *),
+                      const char *doing)
+{
+    size_t words = 0, sites = 0;
+    uint32_t *code = pass(t->code, t->words, &words, &sites);
+    if (!code) {
+        fprintf(stderr, "tp2: out of memory %s\n", doing);
+        return (size_t)-1;
+    }
+    free(t->rewritten);
+    t->rewritten = code;
+    t->code = code;
+    t->words = words;
+    return sites;
+}
+
 /* Each pass's SPIR-V, of its precision and the kinds the scene needs. */
 static int choose_code(struct renderer *r)
 {
@@ -444,15 +465,14 @@ static int choose_code(struct renderer *r)
         struct tracer *t = passes[k];
         t->code = builds[t->use_double][tier].code;
         t->words = builds[t->use_double][tier].size / sizeof *t->code;
+        if (t->use_double &&
+            rewrite(t, spirv_exact, "making the double shader exact") == (size_t)-1)
+            return -1;
         if (!fused)
             continue;
-        size_t sites = 0;
-        t->fused = spirv_fused(t->code, t->words, &t->words, &sites);
-        if (!t->fused) {
-            fprintf(stderr, "tp2: out of memory rewriting the shader for TP2_FUSED\n");
+        size_t sites = rewrite(t, spirv_fused, "rewriting the shader for TP2_FUSED");
+        if (sites == (size_t)-1)
             return -1;
-        }
-        t->code = t->fused;
         fprintf(stderr, "tp2: TP2_FUSED: %zu operations of the %s shader fused\n", sites,
                 t->use_double ? "double" : "float");
     }
@@ -1007,8 +1027,8 @@ static void unmake_passes(struct renderer *r)
             vkDestroyPipeline(r->vk.device, passes[p]->pipelines[k], NULL);
             passes[p]->pipelines[k] = VK_NULL_HANDLE;
         }
-        free(passes[p]->fused);
-        passes[p]->fused = NULL;
+        free(passes[p]->rewritten);
+        passes[p]->rewritten = NULL;
     }
 }
 

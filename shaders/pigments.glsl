@@ -29,8 +29,8 @@ vec3 texmap_color(int index, rvec3 p)
     rvec4 trow = pigment_q(index);
     ivec4 info = pigment_kind(index); // kind, first texel, width, height
     float fx, fy;
-    ivec2 x = wrapped_cells(dot(srow.xyz, p) + srow.w, info.z, fx);
-    ivec2 y = wrapped_cells(dot(trow.xyz, p) + trow.w, info.w, fy);
+    ivec2 x = wrapped_cells(rdot(srow.xyz, p) + srow.w, info.z, fx);
+    ivec2 y = wrapped_cells(rdot(trow.xyz, p) + trow.w, info.w, fy);
     vec3 top = mix(texel(info.y, info.z, x.x, y.x), texel(info.y, info.z, x.y, y.x), fx);
     vec3 bottom = mix(texel(info.y, info.z, x.x, y.y), texel(info.y, info.z, x.y, y.y), fx);
     return mix(top, bottom, fy);
@@ -128,7 +128,7 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, int object, float doubt, inout 
         return even ? pigment_color1(index).rgb : pigment_color2(index).rgb;
     }
     if (USES_PIGMENT(TP2_PIGMENT_GRADIENT) && kind == TP2_PIGMENT_GRADIENT) {
-        float f = clamp(float(dot(p - pigment_p(index).xyz, pigment_q(index).xyz)), 0.0, 1.0);
+        float f = clamp(float(rdot(p - pigment_p(index).xyz, pigment_q(index).xyz)), 0.0, 1.0);
         return mix(pigment_color1(index).rgb, pigment_color2(index).rgb, f);
     }
     if (USES_PIGMENT(TP2_PIGMENT_TEXMAP) && kind == TP2_PIGMENT_TEXMAP)

@@ -82,20 +82,20 @@ bool light_ray(Shading sh, int j, vec2 area_shift, out rvec3 dir, out real dist,
     dist = 0.0;
     lit = tint = vec3(0.0);
     rvec3 to_light = pos - sh.p;
-    real d = length(to_light);
+    real d = rlength(to_light);
     if (d == 0.0)
         return false;
     rvec3 l = to_light / d;
-    float ndotl = float(dot(sh.nf, l));
+    float ndotl = float(rdot(sh.nf, l));
     if (ndotl <= 0.0)
         return false;
     rvec3 lo = pos - sh.origin;
-    dist = length(lo);
+    dist = rlength(lo);
     dir = lo / dist;
     float fd = float(d);
     float a = 1.0 / (att.x + att.y * fd + att.z * fd * fd);
-    rvec3 r = 2.0 * dot(sh.nf, l) * sh.nf - l;
-    float spec = phong_power(float(dot(r, sh.view)), sh.fin.phong.w);
+    rvec3 r = 2.0 * rdot(sh.nf, l) * sh.nf - l;
+    float spec = phong_power(float(rdot(r, sh.view)), sh.fin.phong.w);
     tint = a * color * sh.fin.phong.y * ndotl;
     lit = tint * sh.pig + a * color * sh.fin.phong.z * spec;
     return true;

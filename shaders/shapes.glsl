@@ -27,7 +27,7 @@ real max_abs(rvec3 p)
 // not of the distance, however far the camera.
 real recenter(rvec3 c, inout rvec3 o, rvec3 d)
 {
-    real t0 = dot(c - o, d);
+    real t0 = rdot(c - o, d);
     o += t0 * d;
     return t0;
 }
@@ -102,16 +102,16 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward, inout float graze
     rvec4 sphere = object_row(i, 0);
     rvec3 oc = o - sphere.xyz;
     real r = sphere.w;
-    real b = dot(oc, d);
+    real b = rdot(oc, d);
     rvec3 closest = oc - b * d;
-    real disc = r * r - dot(closest, closest);
+    real disc = r * r - rdot(closest, closest);
     if (SIGNATURES && !on && b < 0.0)
         graze = min(graze, float(abs(disc) / (2.0 * r)) -
                                2.0 * ROUNDING * float(max_abs(oc) + r));
     if (disc < 0.0)
         return NO_HIT;
     real q = -b - (b < 0.0 ? -sqrt(disc) : sqrt(disc));
-    real c = dot(oc, oc) - r * r;
+    real c = rdot(oc, oc) - r * r;
     real t0 = q != 0.0 ? c / q : real(0.0);
     real near_t = min(t0, q);
     real far_t = max(t0, q);
@@ -123,7 +123,7 @@ real hit_sphere(int i, rvec3 o, rvec3 d, bool on, bool inward, inout float graze
 void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 curving)
 {
     rvec4 sphere = object_row(i, 0);
-    n = normalize(p - sphere.xyz);
+    n = rnormalize(p - sphere.xyz);
     p = sphere.xyz + sphere.w * n;
     scale = max_abs(sphere.xyz) + sphere.w;
     curving = vec2(1.0 / float(sphere.w));
@@ -134,10 +134,10 @@ void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 
 // t > 0 where the ray meets n.x + dist = 0.
 real plane_t(rvec4 plane, rvec3 o, rvec3 d)
 {
-    real denom = dot(plane.xyz, d);
+    real denom = rdot(plane.xyz, d);
     if (denom == 0.0)
         return NO_HIT;
-    real t = -(dot(plane.xyz, o) + plane.w) / denom;
+    real t = -(rdot(plane.xyz, o) + plane.w) / denom;
     return t > 0.0 ? t : NO_HIT;
 }
 
@@ -150,7 +150,7 @@ real hit_plane(int i, rvec3 o, rvec3 d, bool on)
 void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
 {
     n = plane.xyz;
-    p -= (dot(n, p) + plane.w) * n;
+    p -= (rdot(n, p) + plane.w) * n;
     scale = max(max_abs(p), abs(plane.w));
 }
 
@@ -165,8 +165,8 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
     Span s = WHOLE_LINE;
     for (int k = 0; k < faces; ++k) {
         rvec4 f = extra_row(first + k);
-        real denom = dot(f.xyz, d);
-        real dist = dot(f.xyz, o) + f.w; // > 0: o is outside this face
+        real denom = rdot(f.xyz, d);
+        real dist = rdot(f.xyz, o) + f.w; // > 0: o is outside this face
         if (denom == 0.0) {
             if (dist > 0.0)
                 return NO_HIT;
@@ -231,8 +231,8 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real k = (r1 - base.w) / h;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
-    real oa = dot(oc, axis.xyz);
-    real da = dot(d, axis.xyz);
+    real oa = rdot(oc, axis.xyz);
+    real da = rdot(d, axis.xyz);
     rvec3 op = oc - oa * axis.xyz;
     rvec3 dp = d - da * axis.xyz;
     real rho = base.w + k * oa; // the radius at the origin's height
@@ -240,8 +240,8 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     Span s = WHOLE_LINE;
     clip_slab(s, oa, da, 0.0, h, 1, 2);
     rvec2 r;
-    real qa = dot(dp, dp) - slope * slope;
-    int n = quadratic_roots(qa, 2.0 * (dot(op, dp) - rho * slope), dot(op, op) - rho * rho, r);
+    real qa = rdot(dp, dp) - slope * slope;
+    int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
     if (n == 2 && qa > 0.0) {
         clip(s, r.x, r.y, 0, 0);
     } else if (n == 2) { // steeper than the side: the half-line on our nappe
@@ -250,12 +250,12 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
         else
             clip(s, -NO_HIT, r.x, 0, 0);
     } else if (n == 1) { // parallel to the side: one crossing
-        bool below = 2.0 * (dot(op, dp) - rho * slope) > 0.0; // Q < 0 before it
+        bool below = 2.0 * (rdot(op, dp) - rho * slope) > 0.0; // Q < 0 before it
         if (below)
             clip(s, -NO_HIT, r.x, 0, 0);
         else
             clip(s, r.x, NO_HIT, 0, 0);
-    } else if (qa > 0.0 || (qa == 0.0 && dot(op, op) > rho * rho)) {
+    } else if (qa > 0.0 || (qa == 0.0 && rdot(op, op) > rho * rho)) {
         return NO_HIT; // outside the side all along (else inside all along)
     }
     s.t_in += t0;
@@ -275,7 +275,7 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
     rvec3 y = p - base.xyz;
-    real z = dot(y, axis.xyz);
+    real z = rdot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);
     curving = vec2(0.0);
     if (part != 0) {
@@ -286,13 +286,13 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
     }
     real k = (r1 - base.w) / axis.w;
     rvec3 radial = y - z * axis.xyz;
-    real len = length(radial);
+    real len = rlength(radial);
     rvec3 e = len > 0.0 ? radial / len : rvec3(0.0);
-    n = len > 0.0 ? normalize(e - k * axis.xyz) : (k > 0.0 ? -axis.xyz : axis.xyz);
+    n = len > 0.0 ? rnormalize(e - k * axis.xyz) : (k > 0.0 ? -axis.xyz : axis.xyz);
     p = base.xyz + z * axis.xyz + (base.w + k * z) * e;
     // 0 along the side; 1 / (the distance to the axis) around it
     rvec3 yp = p - base.xyz;
-    curving.y = 1.0 / float(length(yp - dot(yp, axis.xyz) * axis.xyz));
+    curving.y = 1.0 / float(rlength(yp - rdot(yp, axis.xyz) * axis.xyz));
 }
 
 // ---- torus: a = center, R; b = unit axis, r ------------------------------
@@ -310,8 +310,8 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
     real t0 = on ? real(0.0) : recenter(ca.xyz, o, d);
     rvec3 x = (o - ca.xyz) / size;
     real R = ca.w / size, r = ab.w / size;
-    real alpha = dot(x, d);
-    real xx = dot(x, x);
+    real alpha = rdot(x, d);
+    real xx = rdot(x, x);
     real near_sq = alpha * alpha - xx + 1.0; // the unit bounding sphere
     if (near_sq < 0.0)
         return NO_HIT;
@@ -319,7 +319,7 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
     real hi = -alpha + sqrt(near_sq);
     if (!(lo < hi))
         return NO_HIT;
-    real dz = dot(d, ab.xyz), xz = dot(x, ab.xyz);
+    real dz = rdot(d, ab.xyz), xz = rdot(x, ab.xyz);
     real beta = xx + R * R - r * r;
     real R4 = 4.0 * R * R;
     rvec4 c = rvec4(beta * beta - R4 * (xx - xz * xz),
@@ -337,8 +337,8 @@ real hit_torus(int i, rvec3 o, rvec3 d, bool on)
     real found = NO_HIT;
     for (int k = 0; k < 4 && roots.x < NO_HIT && found == NO_HIT; ++k) {
         rvec3 y = x + roots.x * d;
-        real z = dot(y, ab.xyz);
-        real rho = length(y - z * ab.xyz);
+        real z = rdot(y, ab.xyz);
+        real rho = rlength(y - z * ab.xyz);
         real tube = (rho - R) * (rho - R) + z * z - r * r;
         real lemon = (rho + R) * (rho + R) + z * z - r * r;
         real t = t0 + roots.x * size;
@@ -355,17 +355,17 @@ void surface_torus(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 c
     rvec4 ca = object_row(i, 0);
     rvec4 ab = object_row(i, 1);
     rvec3 y = p - ca.xyz;
-    real z = dot(y, ab.xyz);
+    real z = rdot(y, ab.xyz);
     rvec3 radial = y - z * ab.xyz;
-    real len = length(radial);
+    real len = rlength(radial);
     rvec3 core = len > 0.0 ? (ca.w / len) * radial : rvec3(0.0);
     rvec3 w = y - core;
-    n = length(w) > 0.0 ? normalize(w) : (z >= 0.0 ? ab.xyz : -ab.xyz);
+    n = rlength(w) > 0.0 ? rnormalize(w) : (z >= 0.0 ? ab.xyz : -ab.xyz);
     p = ca.xyz + core + ab.w * n;
     scale = max_abs(ca.xyz) + ca.w + ab.w;
     // 1/r around the tube; (rho - R) / (r rho) around the axis
     rvec3 yp = p - ca.xyz;
-    float rho = float(length(yp - dot(yp, ab.xyz) * ab.xyz));
+    float rho = float(rlength(yp - rdot(yp, ab.xyz) * ab.xyz));
     float tube = 1.0 / float(ab.w), ring = (rho - float(ca.w)) / (float(ab.w) * rho);
     curving = vec2(min(tube, ring), max(tube, ring));
 }
@@ -394,11 +394,11 @@ real hit_quadric(int i, rvec3 o, rvec3 d, bool on)
     rvec3 y = o - ref;
     rvec3 g = quadric_g(i);
     rvec3 md = quadric_m(i, d);
-    real qa = dot(d, md);
-    real qb = 2.0 * dot(y, md) + dot(g, d);
+    real qa = rdot(d, md);
+    real qb = 2.0 * rdot(y, md) + rdot(g, d);
     if (on) // the root at 0 divided out: qa s + qb = 0
         return qa != 0.0 && -qb / qa > 0.0 ? -qb / qa : NO_HIT;
-    real qc = dot(y, quadric_m(i, y)) + dot(g, y) + object_row(i, 2).y;
+    real qc = rdot(y, quadric_m(i, y)) + rdot(g, y) + object_row(i, 2).y;
     rvec2 r;
     int n = quadratic_roots(qa, qb, qc, r);
     if (n >= 1 && t0 + r.x > 0.0)
@@ -416,11 +416,11 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale,
     rvec3 my = quadric_m(i, y);
     rvec3 g = quadric_g(i);
     rvec3 grad = 2.0 * my + g;
-    real q = dot(y, my) + dot(g, y) + object_row(i, 2).y;
-    real gg = dot(grad, grad);
+    real q = rdot(y, my) + rdot(g, y) + object_row(i, 2).y;
+    real gg = rdot(grad, grad);
     if (gg > 0.0) {
         p -= (q / gg) * grad;
-        n = normalize(grad);
+        n = rnormalize(grad);
     } else { // a singular point (a cone's apex): face the ray
         n = -d;
     }
@@ -430,7 +430,7 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale,
     rvec3 at = 2.0 * quadric_m(i, p - ref) + g;
     vec3 rows = vec3(abs(quadric_m(i, rvec3(1, 0, 0)))) + vec3(abs(quadric_m(i, rvec3(0, 1, 0)))) +
                 vec3(abs(quadric_m(i, rvec3(0, 0, 1))));
-    float k = 2.0 * max(rows.x, max(rows.y, rows.z)) / float(length(at));
+    float k = 2.0 * max(rows.x, max(rows.y, rows.z)) / float(rlength(at));
     curving = vec2(-k, k);
 }
 

@@ -11,23 +11,7 @@
 
 #include "tp2_shared.h"
 
-// TP2_REL_EPS: offset of a new ray's origin off its surface, relative to
-// the scale of the hit point: 16 ulps, against coincident surfaces
-// (self-hits are ruled out by Start, not by this).
-#ifdef TP2_DOUBLE
-#define real double
-#define rvec2 dvec2
-#define rvec3 dvec3
-#define rvec4 dvec4
-#define TP2_REL_EPS 5.6843418860808015e-14LF // 2^-44
-#else
-#define real float
-#define rvec2 vec2
-#define rvec3 vec3
-#define rvec4 vec4
-#define TP2_REL_EPS 9.5367431640625e-7 // 2^-20
-#endif
-
+#include "real.glsl"
 #include "layout.glsl"
 #include "signature.glsl"
 #include "random.glsl"
@@ -111,9 +95,9 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     real scale;
     vec2 curving; // the surface's, as the ray meets it (from inside, hollow)
     surface_point(h.object, h.part, ray.origin, ray.dir, h.t, sh.p, n, scale, curving);
-    bool entering = dot(ray.dir, n) < 0.0;
+    bool entering = rdot(ray.dir, n) < 0.0;
     // How far the hit may be off, and its footprint (signature.glsl).
-    float cosine = abs(float(dot(ray.dir, n)));
+    float cosine = abs(float(rdot(ray.dir, n)));
     curving = clamp(curving, -1e15, 1e15);
     curving = entering ? curving : -curving.yx;
     float bend = max(abs(curving.x), abs(curving.y));
@@ -197,7 +181,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     vec4 mirrored = mirrored_doubt(doubt, hd, curving);
     int children = 0;
     if (kr > 0.0 && traced(weight * kr, budget, color)) {
-        rvec3 r = ray.dir - 2.0 * dot(ray.dir, nf) * nf;
+        rvec3 r = ray.dir - 2.0 * rdot(ray.dir, nf) * nf;
         first = Ray(outside, r, back, weight * kr, depth);
         first_doubt = mirrored;
         ++children;
@@ -205,7 +189,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     }
     if (kt > 0.0 && traced(weight * kt, budget, color)) {
         real eta = entering ? real(1.0) / real(fin.optics.z) : real(fin.optics.z);
-        real cosi = -dot(ray.dir, nf);
+        real cosi = -rdot(ray.dir, nf);
         real k = 1.0 - eta * eta * (1.0 - cosi * cosi);
         float e2 = float(eta * eta);
         Ray t;
@@ -219,7 +203,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         } else if (k < 0.0) { // total internal reflection: the mirror direction
             t = Ray(outside, ray.dir + 2.0 * cosi * nf, back, weight * kt, depth);
         } else {
-            rvec3 dir_t = normalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
+            rvec3 dir_t = rnormalize(eta * ray.dir + (eta * cosi - sqrt(k)) * nf);
             t = Ray(p - offset, dir_t, Start(h.object, entering), weight * kt, depth);
             t_doubt = refracted_doubt(doubt, hd, curving, float(eta), float(sqrt(k)));
         }
@@ -267,13 +251,13 @@ Ray unpacked_ray(WalkRay w)
 // a lens point when the scene has a lens (SPEC 3: thin lens, focal plane).
 void camera_ray(real x, real y, vec2 lens_sample, out rvec3 origin, out rvec3 dir)
 {
-    dir = normalize(frame.w.xyz + x * frame.u.xyz + y * frame.v.xyz);
+    dir = rnormalize(frame.w.xyz + x * frame.u.xyz + y * frame.v.xyz);
     origin = frame.eye.xyz;
     if (HAS_LENS && frame.lens.x > 0.0) {
-        rvec3 focus = origin + dir * (real(frame.lens.y) / dot(dir, frame.w.xyz));
+        rvec3 focus = origin + dir * (real(frame.lens.y) / rdot(dir, frame.w.xyz));
         vec2 disk = float(frame.lens.x) * square_to_disk(lens_sample);
-        origin += disk.x * normalize(frame.u.xyz) + disk.y * normalize(frame.v.xyz);
-        dir = normalize(focus - origin);
+        origin += disk.x * rnormalize(frame.u.xyz) + disk.y * rnormalize(frame.v.xyz);
+        dir = rnormalize(focus - origin);
     }
 }
 

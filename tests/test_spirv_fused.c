@@ -18,6 +18,7 @@
 #include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #include "unit.h"
+#include "spirv_test.h"
 
 enum { HEADER = 5, OP_CAPABILITY = 17, FLOAT64 = 10 };
 
@@ -77,24 +78,6 @@ static void check_shader(const char *name, const uint32_t *code, size_t bytes)
     free(out);
 }
 
-static void check_refused(void)
-{
-    size_t words = sizeof tp2_trace_float / 4, n, sites;
-    uint32_t *copy = malloc(sizeof tp2_trace_float);
-    memcpy(copy, tp2_trace_float, sizeof tp2_trace_float);
-    expect(spirv_fused(copy, 4, &n, &sites) == NULL, "a module shorter than its header");
-    copy[0] ^= 1;
-    expect(spirv_fused(copy, words, &n, &sites) == NULL, "a wrong magic number");
-    copy[0] ^= 1;
-    uint32_t first = copy[HEADER];
-    copy[HEADER] &= 0xffffu; /* a word count of 0 */
-    expect(spirv_fused(copy, words, &n, &sites) == NULL, "an instruction of 0 words");
-    copy[HEADER] = first;
-    expect(copy[HEADER] >> 16 == 2 && spirv_fused(copy, HEADER + 1, &n, &sites) == NULL,
-           "an instruction cut by the module's end");
-    free(copy);
-}
-
 int main(void)
 {
     check_shader("float", tp2_trace_float, sizeof tp2_trace_float);
@@ -103,6 +86,6 @@ int main(void)
     check_shader("double curved", tp2_trace_double_curved, sizeof tp2_trace_double_curved);
     check_shader("float basic", tp2_trace_float_basic, sizeof tp2_trace_float_basic);
     check_shader("double basic", tp2_trace_double_basic, sizeof tp2_trace_double_basic);
-    check_refused();
+    spirv_check_refused(spirv_fused, tp2_trace_float, sizeof tp2_trace_float);
     return unit_report();
 }

@@ -21,8 +21,6 @@
 #define SPV_ENABLE_UTILITY_CODE
 #include <spirv/unified1/spirv.h>
 
-#include <spirv-tools/libspirv.h>
-
 #include "specialize_probe_spv.h"
 #include "spirv_specialize.h"
 #include "tp2_shared.h"
@@ -33,6 +31,7 @@
 #include "trace_float_curved_spv.h"
 #include "trace_float_spv.h"
 #include "unit.h"
+#include "spirv_test.h"
 
 /* SpvHasResultAndType's external definition is spirv_specialize.c's. */
 
@@ -81,24 +80,10 @@ static bool named(const uint32_t *code, size_t words, const char *name)
     return false;
 }
 
-/* Whether SPIRV-Tools' validator accepts the module for Vulkan 1.1 (the
- * environment tp2's shaders are compiled for); prints why not. */
-static bool valid(const char *what, const uint32_t *code, size_t words)
-{
-    spv_context context = spvContextCreate(SPV_ENV_VULKAN_1_1);
-    spv_diagnostic diagnostic = NULL;
-    spv_result_t r = spvValidateBinary(context, code, words, &diagnostic);
-    if (r != SPV_SUCCESS)
-        printf("%s: %s\n", what, diagnostic ? diagnostic->error : "invalid");
-    spvDiagnosticDestroy(diagnostic);
-    spvContextDestroy(context);
-    return r == SPV_SUCCESS;
-}
-
 /* Checks the module's structure; returns false (and reports) if broken. */
 static bool check_module(const char *what, const uint32_t *out, size_t words)
 {
-    expect(valid(what, out, words), "%s: valid SPIR-V", what);
+    expect(spirv_valid(what, out, words), "%s: valid SPIR-V", what);
     uint32_t bound = out[3];
     unsigned char *defined = calloc(bound, 1), *function = calloc(bound, 1);
     bool ok = defined && function;
@@ -205,7 +190,7 @@ static void check_random_constants(void)
         size_t k = (size_t)round % 6, out_words = 0;
         uint32_t *out = spirv_specialize(builds[k].code, builds[k].bytes / 4, v, TP2_SPEC_COUNT,
                                          &out_words);
-        invalid += !out || !valid("random constants", out, out_words);
+        invalid += !out || !spirv_valid("random constants", out, out_words);
         free(out);
     }
     expect(invalid == 0, "%d of 60 random sets of constants gave no valid module", invalid);
@@ -216,7 +201,7 @@ static void check_random_constants(void)
 static void check_probe(void)
 {
     size_t words = sizeof tp2_specialize_probe / 4;
-    expect(valid("probe", tp2_specialize_probe, words), "the probe itself is valid");
+    expect(spirv_valid("probe", tp2_specialize_probe, words), "the probe itself is valid");
     for (int a = 0; a < 2; a++)
         for (int b = 0; b < 2; b++)
             for (int k = 1; k <= 3; k++) {
