@@ -32,19 +32,13 @@
 #ifdef TP2_DOUBLE
 #define TP2_REL_EPS 5.6843418860808015e-14LF // 2^-44
 
-real rdot(rvec2 a, rvec2 b) { return a.x * b.x + a.y * b.y; }
 real rdot(rvec3 a, rvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-real rdot(rvec4 a, rvec4 b) { return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w; }
-real rlength(rvec2 v) { return sqrt(rdot(v, v)); }
 real rlength(rvec3 v) { return sqrt(rdot(v, v)); }
 rvec3 rnormalize(rvec3 v) { return v / sqrt(rdot(v, v)); }
 #else
 #define TP2_REL_EPS 9.5367431640625e-7 // 2^-20
 
-real rdot(rvec2 a, rvec2 b) { return dot(a, b); }
 real rdot(rvec3 a, rvec3 b) { return dot(a, b); }
-real rdot(rvec4 a, rvec4 b) { return dot(a, b); }
-real rlength(rvec2 v) { return length(v); }
 real rlength(rvec3 v) { return length(v); }
 rvec3 rnormalize(rvec3 v) { return normalize(v); }
 #endif
