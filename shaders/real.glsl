@@ -34,7 +34,7 @@
 
 real rdot(rvec3 a, rvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 real rlength(rvec3 v) { return sqrt(rdot(v, v)); }
-rvec3 rnormalize(rvec3 v) { return v / sqrt(rdot(v, v)); }
+rvec3 rnormalize(rvec3 v) { return v / rlength(v); }
 #else
 #define TP2_REL_EPS 9.5367431640625e-7 // 2^-20
 
