@@ -635,6 +635,17 @@ void bvh_move(struct bvh *b, const double origin[3])
     }
 }
 
+void bvh_grow(struct bvh *b, double margin)
+{
+    for (size_t i = 0; i < b->node_count; i++) {
+        struct bvh_node *n = &b->nodes[i];
+        for (int a = 0; a < 3; a++) {
+            n->lo[a] = float_below((double)n->lo[a] - margin);
+            n->hi[a] = float_above((double)n->hi[a] + margin);
+        }
+    }
+}
+
 void bvh_free(struct bvh *b)
 {
     free(b->nodes);

@@ -45,6 +45,7 @@ struct layout {
     double origin[3];         /* where the GPU's coordinates start: place_origin */
     bool moved;               /* origin != 0 */
     double eye[3];            /* from origin */
+    double scale;             /* layout_scale's, before --precision auto grows the BVH */
     size_t nprims, nbounded;  /* slots [0, nbounded) are in BVH order */
     struct prim_ref *slots;   /* slot -> primitive */
     size_t nextra;            /* rows of the extra buffer */
@@ -295,7 +296,7 @@ static int twins_start(const struct scene *s, struct layout *lay)
     lay->twin_planes = malloc(TP2_MAX_FACES * sizeof *lay->twin_planes);
     struct twin_face *faces = NULL;
     size_t n = 0, cap = 0;
-    double scale = layout_scale(s, lay);
+    double scale = lay->scale;
     int rc = lay->near_twin && rows && lay->twin_planes ? 0 : -1;
     for (size_t slot = 0; rc == 0 && slot < lay->nprims; slot++) {
         size_t o = lay->slots[slot].object;
@@ -614,8 +615,13 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         opt->features_known(&out->features, opt->user);
     if (rc == 0)
         rc = order_bounded(s, &lay, bounded, &out->bvh_time);
-    if (rc == 0)
+    if (rc == 0) {
         place_origin(s, &lay);
+        lay.scale = layout_scale(s, &lay);
+        /* --precision auto's float pass: shapes.glsl's edge test */
+        if (twin && !opt->use_double)
+            bvh_grow(&lay.bvh, 4 * TP2_EDGE_REACH * lay.scale);
+    }
     free(bounded);
     if (rc == 0)
         rc = layout_texels(s, &lay);

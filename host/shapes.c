@@ -233,11 +233,19 @@ static size_t polyhedron_extra(const double *p, size_t n)
     return n / 4;
 }
 
+/* Row 0: the face count; rows 1 and 2 its box's corners (crossed, lo >
+ * hi, where it is open), which the float pass's edge test (shapes.glsl,
+ * edge_graze) reads. */
 static void polyhedron_pack(const double *p, size_t n, size_t k, struct shape_record *rec,
                             double (*extra)[4])
 {
-    (void)k;
+    double lo[3], hi[3];
+    if (!polyhedron_bounds(p, n, k, lo, hi))
+        for (int a = 0; a < 3; a++)
+            lo[a] = 1, hi[a] = 0;
     rec->row[0][0] = (double)(n / 4);
+    record_row(rec, 1, lo, 0);
+    record_row(rec, 2, hi, 0);
     for (size_t i = 0; i < n / 4; i++)
         unit_plane(p + 4 * i, extra[i]);
 }
@@ -245,6 +253,8 @@ static void polyhedron_pack(const double *p, size_t n, size_t k, struct shape_re
 static void polyhedron_move(struct shape_record *rec, double (*extra)[4],
                             const double origin[3])
 {
+    move_point(rec->row[1], origin);
+    move_point(rec->row[2], origin);
     for (size_t i = 0; i < (size_t)rec->row[0][0]; i++)
         move_plane(extra[i], origin);
 }

@@ -12,7 +12,9 @@ struct Hit {
     int part;   // which part of it (a face, a cap): shapes.glsl
     real next;  // under SIGNATURES: the nearest other crossing tested (signature.glsl),
     int next_object; // and its object
-    float graze; // and how near the ray passed a sphere's surface (shapes.glsl)
+    float graze; // and how near it passed a sphere's surface (shapes.glsl: hit_sphere)
+    float edge;  // and where it passed a flat solid's edge within its doubt
+                 // (shapes.glsl: edge_graze), if nearer than the hit
 };
 
 // The surface a ray starts on, which rounding must not let it hit again
@@ -37,7 +39,8 @@ const Start NOWHERE = Start(-1, false);
 // of itself, which moves each slab by that times 1/d (slack, doubled for
 // safety), and 1/d by 2^-24 of itself (entry narrowed by 2^-21 too); so
 // no box the double ray meets is missed. The float build's slack is 0
-// and its entry is not narrowed: its tests are as they were.
+// and its entry is not narrowed: its tests are as they were. (Under
+// --precision auto the boxes themselves are larger: TP2_EDGE_REACH.)
 const float BOX_WIDEN = 4.76837158203125e-7; // 2^-21: a slab's two roundings, with room
 const float ORIGIN_ROUNDING = 1.1920928955078125e-7; // 2^-23: twice float's 2^-24
 
@@ -88,6 +91,14 @@ rvec3 safe_inverse(rvec3 d)
 // objects sit in BVH order at the start of objects[], the unbounded ones
 // after them.
 //
+// Under SIGNATURES, doubt (x: how far the ray's origin may be off, y: its
+// direction, radians; shapes.glsl, edge_graze) says which edges it passes
+// within its error of: Hit.edge is the nearest such, if nearer than the
+// hit (ahead of any object hit, so the same whatever the order objects
+// are tested in). An any-hit search does not stop at an occluder whose
+// edge it passes so near: only a sure one settles the shadow (and clears
+// Hit.edge), else Hit.edge says that rounding may have decided it.
+//
 // One loop tests one object per step, and between the ranges of objects
 // to test, walks the BVH to its next leaf (nearest first), the unbounded
 // objects last; with few bounded objects (no BVH: a plain loop is faster)
@@ -98,9 +109,10 @@ rvec3 safe_inverse(rvec3 d)
 // for the lanes testing objects beside them (README "Performance": 11% on BVH
 // scenes on lavapipe; testing a leaf's objects in an inner loop as well,
 // or popping there too, was no better).
-Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first)
+Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first,
+                vec2 doubt)
 {
-    Hit h = Hit(tmax, -1, 0, tmax, -1, NO_GRAZE);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, NO_GRAZE, NO_EDGE);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);
@@ -121,9 +133,14 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         bool enter = false;
         if (i < end) {
             int part;
-            real t = hit_object(i, o, d, i == start.object, start.inward, part, h.graze);
-            if (t < h.t) {
-                h = Hit(t, i, part, h.t, h.object, h.graze);
+            float edge = NO_EDGE;
+            real t = hit_object(i, o, d, i == start.object, start.inward, doubt, part,
+                                h.graze, edge);
+            bool grazed = SIGNATURES && edge < NO_EDGE;
+            if (grazed && edge <= h.t)
+                h.edge = min(h.edge, edge);
+            if (t < h.t && !(any_hit && grazed)) {
+                h = Hit(t, i, part, h.t, h.object, h.graze, any_hit ? NO_EDGE : h.edge);
                 if (any_hit)
                     break;
             } else if (SIGNATURES && t < h.next) {

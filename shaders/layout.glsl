@@ -8,7 +8,9 @@
 // `real`, `rvec3` and `rvec4` are float or double (see trace.comp).
 
 struct Frame {
-    rvec4 eye;        // from the origin the scene was packed from (scene_pack.c)
+    rvec4 eye;        // from the origin the scene was packed from (scene_pack.c);
+                      // w: the largest coordinate of the eye, the lights and the
+                      // bounded objects' box (shapes.glsl, edge_graze)
     rvec4 u;          // right, scaled to half the image plane's width
     rvec4 v;          // up, scaled to half its height
     rvec4 w;          // unit view direction

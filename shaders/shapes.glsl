@@ -37,21 +37,79 @@ real recenter(rvec3 c, inout rvec3 o, rvec3 d)
 struct Span {
     real t_in, t_out;      // may be -NO_HIT / NO_HIT: no bound on that side
     int part_in, part_out; // the part crossed there
+    // Under SIGNATURES (edge_graze): the latest entry but one, and |n.d|
+    // of the faces crossed at t_in, t_out and t_in2 (0 where not flat).
+    real t_in2;
+    float cos_in, cos_out, cos_in2;
 };
 
-const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0);
+const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0, -NO_HIT, 0.0, 0.0, 0.0);
 
-// Narrows s to [t0, t1], entering through part p0, leaving through p1.
-void clip(inout Span s, real t0, real t1, int p0, int p1)
+// Narrows s to [t0, t1], entering through part p0, leaving through p1,
+// flat faces crossed at |n.d| = cosine there.
+void clip(inout Span s, real t0, real t1, int p0, int p1, float cosine)
 {
     if (t0 > s.t_in) {
+        if (SIGNATURES) {
+            s.t_in2 = s.t_in;
+            s.cos_in2 = s.cos_in;
+            s.cos_in = cosine;
+        }
         s.t_in = t0;
         s.part_in = p0;
+    } else if (SIGNATURES && t0 > s.t_in2) {
+        s.t_in2 = t0;
+        s.cos_in2 = cosine;
     }
     if (t1 < s.t_out) {
         s.t_out = t1;
         s.part_out = p1;
+        if (SIGNATURES)
+            s.cos_out = cosine;
     }
+}
+
+// At least how far across a ray two crossings of flat faces at distance
+// gap along it (at |n.d| = a and b) lie from meeting: moved across by e,
+// the ray crosses each face up to e / |n.d| further along, so they meet
+// once e (1/a + 1/b) >= gap, and 1/a + 1/b <= 2 / min(a, b).
+float across(real gap, float a, float b)
+{
+    return 0.5 * float(abs(gap)) * min(a, b);
+}
+
+// Under SIGNATURES, edge becomes where a ray from outside passes an edge
+// of a solid bounded by flat faces nearer than it may be off (doubt.x at
+// its origin, doubt.y radians in its direction, and this test's own
+// rounding): the edge where its entry and exit faces meet (a silhouette,
+// hit or missed) or its last two entry faces (which face it meets). A
+// straight edge can lie along a row of pixel centers (an axis-aligned
+// box seen from a camera on its axes), where rounding flips a run of
+// pixels that no neighbour's boundary test finds (signature.glsl,
+// edges_seen). A miss counts only where the ray passes within twice that
+// of the solid's box [lo, hi] (two faces' planes also meet far from a
+// polyhedron) and that reach is at most TP2_EDGE_REACH of the scene's
+// scale: there the BVH, whose boxes grow by four times that under
+// SIGNATURES, tests the solid as a plain loop does, so that both mark the
+// same pixels (an open polyhedron, tested by every ray, has no box: lo >
+// hi). Doubts larger still are SENSITIVE's.
+void edge_graze(Span s, rvec3 o, rvec3 d, vec2 doubt, rvec3 lo, rvec3 hi, inout float edge)
+{
+    if (!SIGNATURES || !(s.t_in > 0.0 && s.t_out < NO_HIT))
+        return;
+    float near = across(s.t_in - s.t_out, s.cos_in, s.cos_out);
+    if (s.t_in2 > -NO_HIT && s.t_in <= s.t_out)
+        near = min(near, across(s.t_in - s.t_in2, s.cos_in, s.cos_in2));
+    float t = float(max(s.t_in, s.t_out));
+    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + t);
+    if (near >= reach || reach > float(TP2_EDGE_REACH) * float(frame.eye.w))
+        return;
+    if (s.t_in > s.t_out && lo.x <= hi.x) { // missed: how far from its box (if any)
+        rvec3 q = o + (0.5 * (s.t_in + s.t_out)) * d;
+        if (length(vec3(max(max(lo - q, q - hi), rvec3(0.0)))) >= 2.0 * reach)
+            return;
+    }
+    edge = float(min(s.t_in, s.t_out));
 }
 
 // Clips s by the slab lo <= oa + t da <= hi of a ray whose coordinate along
@@ -66,9 +124,9 @@ void clip_slab(inout Span s, real oa, real da, real lo, real hi, int p_lo, int p
     real t_lo = (lo - oa) / da;
     real t_hi = (hi - oa) / da;
     if (da > 0.0)
-        clip(s, t_lo, t_hi, p_lo, p_hi);
+        clip(s, t_lo, t_hi, p_lo, p_hi, float(da));
     else
-        clip(s, t_hi, t_lo, p_hi, p_lo);
+        clip(s, t_hi, t_lo, p_hi, p_lo, float(-da));
 }
 
 // The hit a convex solid's span gives (see the rules at the top).
@@ -158,7 +216,8 @@ void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
 
 // The faces whose outward normals point against the ray are where it
 // enters; the latest such entry and the earliest exit bound the span.
-real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt,
+                    inout float edge, out int part)
 {
     int first = object_ids(i).w;
     int faces = int(object_row(i, 0).x);
@@ -173,11 +232,13 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
         } else {
             real t = -dist / denom;
             if (denom < 0.0)
-                clip(s, t, NO_HIT, k, k);
+                clip(s, t, NO_HIT, k, k, float(-denom));
             else
-                clip(s, -NO_HIT, t, k, k);
+                clip(s, -NO_HIT, t, k, k, float(denom));
         }
     }
+    if (!on)
+        edge_graze(s, o, d, doubt, object_row(i, 1).xyz, object_row(i, 2).xyz, edge);
     return convex_hit(s, on, inward, part);
 }
 
@@ -189,7 +250,8 @@ void surface_polyhedron(int i, int part, inout rvec3 p, out rvec3 n, out real sc
 // ---- box: a = min corner, b = max corner --------------------------------
 
 // Parts: axis + 3 for the face at the max corner.
-real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
+real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, inout float edge,
+             out int part)
 {
     rvec3 lo = object_row(i, 0).xyz;
     rvec3 hi = object_row(i, 1).xyz;
@@ -197,6 +259,8 @@ real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part)
     clip_slab(s, o.x, d.x, lo.x, hi.x, 0, 3);
     clip_slab(s, o.y, d.y, lo.y, hi.y, 1, 4);
     clip_slab(s, o.z, d.z, lo.z, hi.z, 2, 5);
+    if (!on)
+        edge_graze(s, o, d, doubt, lo, hi, edge);
     return convex_hit(s, on, inward, part);
 }
 
@@ -243,18 +307,18 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
     if (n == 2 && qa > 0.0) {
-        clip(s, r.x, r.y, 0, 0);
+        clip(s, r.x, r.y, 0, 0, 0.0);
     } else if (n == 2) { // steeper than the side: the half-line on our nappe
         if (slope > 0.0)
-            clip(s, r.y, NO_HIT, 0, 0);
+            clip(s, r.y, NO_HIT, 0, 0, 0.0);
         else
-            clip(s, -NO_HIT, r.x, 0, 0);
+            clip(s, -NO_HIT, r.x, 0, 0, 0.0);
     } else if (n == 1) { // parallel to the side: one crossing
         bool below = 2.0 * (rdot(op, dp) - rho * slope) > 0.0; // Q < 0 before it
         if (below)
-            clip(s, -NO_HIT, r.x, 0, 0);
+            clip(s, -NO_HIT, r.x, 0, 0, 0.0);
         else
-            clip(s, r.x, NO_HIT, 0, 0);
+            clip(s, r.x, NO_HIT, 0, 0, 0.0);
     } else if (qa > 0.0 || (qa == 0.0 && rdot(op, op) > rho * rho)) {
         return NO_HIT; // outside the side all along (else inside all along)
     }
@@ -521,10 +585,10 @@ bool same_in_float(int i)
     return (object_ids(i).x & TP2_SHAPE_INEXACT) == 0;
 }
 
-// Object i's nearest t > 0 and part (see the top of this file); graze:
-// see hit_sphere.
-real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part,
-                inout float graze)
+// Object i's nearest t > 0 and part (see the top of this file); graze
+// and edge: see hit_sphere and edge_graze (doubt: the ray's).
+real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, out int part,
+                inout float graze, inout float edge)
 {
     part = 0;
     int kind = shape_of(i);
@@ -536,9 +600,9 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, out int part,
     if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
         return hit_triangle(i, o, d, on);
     if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
-        return hit_box(i, o, d, on, inward, part);
+        return hit_box(i, o, d, on, inward, doubt, edge, part);
     if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
-        return hit_polyhedron(i, o, d, on, inward, part);
+        return hit_polyhedron(i, o, d, on, inward, doubt, edge, part);
 #endif
 #ifdef TP2_CURVED
     if ((USES_SHAPE(TP2_SHAPE_CYLINDER) && kind == TP2_SHAPE_CYLINDER) ||

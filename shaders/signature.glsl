@@ -10,8 +10,9 @@
 // with a local margin (a checker cell face, the sign of n.d, total
 // internal reflection) was within its doubt of flipping, a texture's
 // or gradient's color may slide by a level with the hit point
-// (trace.comp, pigment_slope), or an area light's penumbra may
-// (penumbra_seen, at the end).
+// (trace.comp, pigment_slope), an area light's penumbra may
+// (penumbra_seen), or a ray passed a flat solid's edge within its doubt
+// (edges_seen, at the end).
 // SENSITIVE: a boundary seen there may move by frame.limits.y pixels or
 // more. A pixel is traced again in double where it is UNSURE, or where
 // its hash differs from a neighbour's and one of the two is SENSITIVE:
@@ -41,6 +42,9 @@ const uint SIGNATURE_START = 2166136261u & HASH; // FNV-1a's offset basis
 // Float's unit roundoff, 2^-24, times a safety factor for the operations
 // one step of a ray takes (an intersection, a normal, a reflection).
 const float ROUNDING = 4.0 * 5.9604645e-8;
+
+// No edge passed (Hit.edge), and no edge test (edge_doubt).
+const float NO_EDGE = 3.0e38;
 
 // Mixes one decision into the hash (FNV-1a on a whole word, 25 bits);
 // compiled out when the pass records no signatures.
@@ -273,10 +277,46 @@ void shadows_kept(inout uint sig, int depth, float pixels, float stake)
 // with the beam through mirror and glass balls, and counted here they
 // marked spheres.txt's 9.0% of pixels instead of 5.4% (README.TXT
 // "Accuracy"). (A miss cannot tell by how much for most kinds; for a
-// sphere it is the closest approach its test computes anyway.)
+// sphere it is the closest approach its test computes anyway; a flat
+// solid's edges are edge_graze's, shapes.glsl.)
 void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float sizes, float stake)
 {
     if (at_stake(stake) && graze < 2.0 * ((depth == 0 ? h.along : 0.0) + ROUNDING * sizes))
+        sig |= UNSURE;
+}
+
+// The doubt a ray's trace_scene takes edges with (intersect.glsl,
+// shapes.glsl: edge_graze): how far its origin and its direction
+// (radians) may be off, twice what doubt_at's terms hold (a safety
+// factor of 2, as shadow_grazes'). Neighbours find the boundaries of
+// which object a ray meets only where rounding may move them by a share
+// of a pixel (SENSITIVE); a straight edge along a row of pixel centers (a
+// box's, seen from a camera on its axes: README.TXT "Accuracy") flips a
+// run of pixels however little it moves. edge_graze tests only doubts
+// that reach at most TP2_EDGE_REACH of the scene's scale (camera rays,
+// flat mirrors' and flat glass's): a beam spread by curved mirrors and
+// lenses is SENSITIVE's.
+vec2 edge_doubt(vec4 doubt, float stake)
+{
+    if (!at_stake(stake))
+        return vec2(-NO_EDGE, 0.0);
+    return 2.0 * vec2(doubt.x * abs(doubt.z), abs(doubt.y) + doubt.x * abs(doubt.w));
+}
+
+// The same for a shadow ray from a hit point: its origin's doubt, as
+// shadow_grazes counts it; its direction's rounding is the test's own.
+vec2 shadow_edge_doubt(int depth, HitDoubt h, float sizes, float stake)
+{
+    if (!at_stake(stake))
+        return vec2(-NO_EDGE, 0.0);
+    return vec2(2.0 * ((depth == 0 ? h.along : 0.0) + ROUNDING * sizes), 0.0);
+}
+
+// Marks sig UNSURE where a ray passed an edge within its doubt, nearer
+// than what it hit (Hit.edge and Hit.t).
+void edges_seen(inout uint sig, float edge, float t)
+{
+    if (edge < NO_EDGE && edge <= t)
         sig |= UNSURE;
 }
 

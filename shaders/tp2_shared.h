@@ -146,6 +146,13 @@
 #define TP2_BVH_LEAF_MASK 7
 #define TP2_BVH_LEAF_MAX 8
 
+/* How far, at most, across a ray the float pass's edge test reaches
+ * (shaders/shapes.glsl, edge_graze), in units of the scene's scale
+ * (Frame.eye.w); under --precision auto the BVH's boxes grow by 4 times
+ * that (scene_pack.c), so that an edge passed that near is tested through
+ * the BVH as by a plain loop. */
+#define TP2_EDGE_REACH (1.0 / 4096.0)
+
 /* Pigment kinds (Pigment.kind.x); host/pigments.c maps keywords to them
  * and shaders/pigments.glsl colors each. */
 #define TP2_PIGMENT_SOLID 0

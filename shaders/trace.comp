@@ -77,9 +77,11 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     first_doubt = second_doubt = doubt;
     vec3 gray = frame.background.rgb;
     float weight = ray.weight;
-    Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false, -1);
     float stake = weight / float(SAMPLES); // what a flip here can change
+    Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false, -1,
+                        edge_doubt(doubt, stake));
     decided(sig, uint(h.object));
+    edges_seen(sig, h.edge, float(h.t));
     if (h.object < 0) { // boundaries beyond move with the direction (signature.glsl)
         seen(sig, far_pixels(doubt), own_far_pixels(doubt), stake);
         color += weight * (HAS_FOG ? frame.fog.rgb : gray);
@@ -132,6 +134,9 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     int samples = light_samples(fin);
     int occluder = -1; // what blocked the last blocked sample
     float graze = NO_GRAZE; // how near a shadow ray passed a sphere (shapes.glsl)
+    // Edges passed within a point light's shadow ray's doubt (an area
+    // light's samples are turned per pixel: penumbra_seen).
+    vec2 shadow_doubt = shadow_edge_doubt(ray.depth, hd, sizes, stake);
     vec2 penumbra = vec2(0.0); // the arealight's samples: the most one lit, one shadowed adds
     for (int j = 0; j < samples; ++j) {
         rvec3 d;
@@ -144,7 +149,8 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         // one object: the last sample's occluder is tested first. (Any
         // occluder answers the same; for point lights this was no faster.)
         int hint = OCCLUDER_HINT && area_sample(j) ? occluder : -1;
-        Hit shadow = trace_scene(outside, d, back, dist, true, hint);
+        Hit shadow = trace_scene(outside, d, back, dist, true, hint,
+                                 area_sample(j) ? vec2(-NO_EDGE, 0.0) : shadow_doubt);
         int blocker = shadow.object;
         bool shadowed = blocker >= 0;
         occluder = shadowed ? blocker : occluder;
@@ -152,6 +158,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
             decided(sig, uint(shadowed));
             shadow_seen(sig, ray.depth, j, shadowed);
             graze = min(graze, shadow.graze);
+            edges_seen(sig, shadow.edge, float(dist));
         } else {
             penumbra = max(penumbra, area_share(lit, shadowed));
         }
