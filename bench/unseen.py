@@ -3,7 +3,8 @@
 
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
                             [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
-                            [--sphere-floor] [--open] [--touching] [--reuse-exact]
+                            [--sphere-floor] [--open] [--touching] [--aligned]
+                            [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
 every bounded kind, the quadric and a floor plane; mirrors and glass of
@@ -38,7 +39,14 @@ scene). --touching adds, from a stream of its own, flat faces resting on
 others or a hair off them (0, +-1e-10 of the coordinate, one float step,
 1e-7 or 1e-5): boxes on the floor and on a box, a triangle and a plane
 on a box's top, a half-space wall against a box's side, a tilted slab
-with a triangle on its top (host/twins.c's cases)."""
+with a triangle on its top (host/twins.c's cases). --aligned writes
+another kind of scene instead, for 400 x 300 only: a camera on the axes
+with a 90 degree field of view, and boxes and cubes (polyhedra) whose
+corners lie on odd coordinates at distances of 4, 12, 20, 60 or 100, so
+that their edges lie along rows and columns of pixel centers (a slope of
+odd/300), among spheres, a floor, flat mirrors and glass, the whole
+turned to another axis and moved off 0 (a course file's axis-aligned
+boxes, seen straight on)."""
 import argparse
 import math
 import os
@@ -55,6 +63,10 @@ MAX_BAD8 = "10"
 
 
 TEXTURE = "unseen-texture.ppm"
+
+# --aligned: distances along the view at which every odd coordinate across
+# it lies on a row or column of pixel centers (300 x / d odd).
+ALIGNED_DEPTHS = [4, 12, 20, 60, 100]
 
 
 def write_texture(folder):
@@ -369,6 +381,78 @@ def add_extras(r, scale, off, dist, nlights, pigments, objects):
     return [""] + directives if directives else []
 
 
+def make_aligned_scene(seed):
+    """--aligned: scene text for seed (deterministic; see the top)."""
+    r = random.Random(f"aligned-{seed}")
+    axes = [0, 1, 2]
+    r.shuffle(axes)
+    signs = [r.choice([-1, 1]) for _ in range(3)]
+    off = [r.choice([0, r.randint(-50, 50), r.uniform(-1e3, 1e3)]) for _ in range(3)]
+
+    def turn(v):  # the scene's axes: local (x, y, z) to world
+        w = [0.0, 0.0, 0.0]
+        for i in range(3):
+            w[axes[i]] = signs[i] * v[i]
+        return w
+
+    def p(x, y, z):
+        w = turn((x, y, z))
+        return " ".join(f"{w[i] + off[i]:.17g}" for i in range(3))
+
+    def plane(n, d):  # n . x + d = 0 in local coordinates
+        w = turn(n)
+        return " ".join(f"{c:.17g}" for c in w) + f" {d - sum(w[i] * off[i] for i in range(3)):.17g}"
+
+    def odd(lo, hi):
+        return r.randrange(lo | 1, hi, 2)
+
+    head = [p(0, 0, 0), p(0, 0, -1), " ".join(f"{c:g}" for c in turn((0, 1, 0))), "90"]
+    nl = r.randint(1, 3)
+    lights = ["", str(nl + 1), "0 0 0  0.2 0.2 0.2  0 0 0"]
+    for _ in range(nl):
+        lights.append(f"{p(r.uniform(-10, 10), r.uniform(2, 12), r.uniform(-8, 6))}  "
+                      f"{r.uniform(.3, 1):.3f} {r.uniform(.3, 1):.3f} {r.uniform(.3, 1):.3f}  1 0 0")
+    pigments = ["solid " + " ".join(f"{r.random():.3f}" for _ in range(3))
+                for _ in range(r.randint(2, 5))]
+    pigments.append(f"checker {' '.join(f'{r.random():.3f}' for _ in range(6))}  "
+                    f"{r.choice([1, 2, 0.5])}")
+    finishes = ["0.1 0.6 0.4 20 0 0 1", "0.1 0.7 0.2 50 0 0 1",
+                f"0.05 0.2 0.5 100 {r.uniform(.5, .9):.3f} 0 1",
+                f"0.02 0.1 0.5 100 0.1 {r.uniform(.6, .9):.3f} {r.choice([1.3, 1.5]):.3f}"]
+    matte = [0, 0, 0, 1, 1, 2]  # glass and mirrors now and then
+    objects = []
+
+    def add(text, finish=None):
+        f = r.choice(matte + [3]) if finish is None else finish
+        objects.append(f"{r.randrange(len(pigments) - 1)} {f} {text}")
+
+    for _ in range(r.randint(4, 10)):
+        near = r.choice(ALIGNED_DEPTHS)
+        far = r.choice([d for d in ALIGNED_DEPTHS if d > near] or [near + 1]) \
+            if r.random() < 0.5 else near + r.randint(1, 3)
+        x0 = odd(-near, near - 1)
+        y0 = odd(-near * 3 // 4, near * 3 // 4 - 1)
+        x1, y1 = x0 + 2 * r.randint(1, 3), y0 + 2 * r.randint(1, 3)
+        kind = r.random()
+        if kind < 0.6:
+            add(f"box {p(x0, y0, -far)} {p(x1, y1, -near)}")
+        elif kind < 0.8:
+            faces = [((1, 0, 0), -x1), ((-1, 0, 0), x0), ((0, 1, 0), -y1), ((0, -1, 0), y0),
+                     ((0, 0, 1), near), ((0, 0, -1), -far)]
+            add("polyhedron 6\n" + "\n".join(plane(n, d) for n, d in faces))
+        else:
+            add(f"sphere {p(r.uniform(-3, 3), r.uniform(-2, 2), -r.uniform(5, 20))} "
+                f"{r.uniform(0.5, 2):.6g}")
+    floor = odd(1, 6)
+    objects.append(f"{len(pigments) - 1} {r.choice([0, 1, 2])} plane {plane((0, 1, 0), floor)}")
+    if r.random() < 0.5:  # a flat mirror wall beside the view
+        side = r.choice([-1, 1])
+        add(f"plane {plane((-side, 0, 0), side * odd(7, 20))}", 2)
+    return "\n".join(head + lights + ["", str(len(pigments))] + pigments +
+                     ["", str(len(finishes))] + finishes +
+                     ["", str(len(objects))] + objects) + "\n"
+
+
 def render(tp2, scene, out, size, options):
     r = subprocess.run([tp2, "--quiet", *options, scene, out, *size],
                        capture_output=True, text=True)
@@ -398,7 +482,11 @@ def main():
                     help="half-space floors, unbounded polyhedra and a mesh too")
     ap.add_argument("--touching", action="store_true",
                     help="flat faces on others or a hair off them (boxes, triangles, planes)")
+    ap.add_argument("--aligned", action="store_true",
+                    help="instead: box and cube edges along rows of pixel centers (400 x 300)")
     args = ap.parse_args()
+    if args.aligned and args.size != ["400", "300"]:
+        ap.error("--aligned scenes are aligned to 400 x 300's pixel centers: --size 400 300")
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
     os.makedirs(folder, exist_ok=True)
     if args.extras:
@@ -409,7 +497,8 @@ def main():
         scene = os.path.join(folder, f"s{seed}.txt")
         files = {}
         with open(scene, "w") as f:
-            f.write(make_scene(seed, args.extras, args.sphere_floor, args.open, files,
+            f.write(make_aligned_scene(seed) if args.aligned else
+                    make_scene(seed, args.extras, args.sphere_floor, args.open, files,
                                args.touching))
         for name, text in files.items():
             with open(os.path.join(folder, name), "w") as f:
