@@ -233,16 +233,22 @@ static size_t polyhedron_extra(const double *p, size_t n)
     return n / 4;
 }
 
-/* Row 0: the face count; rows 1 and 2 its box's corners (crossed, lo >
- * hi, where it is open), which the float pass's edge test (shapes.glsl,
- * edge_graze) reads. */
+/* Row 0: the face count; rows 1 and 2 its box's corners, which the float
+ * pass's edge test (shapes.glsl, edge_graze) reads: crossed (lo > hi)
+ * where it is open or beyond float's range, else rounded to floats, as
+ * the record's other numbers are where the faces are (TP2_SHAPE_INEXACT
+ * counts them all; the test's margin is far above that rounding). */
 static void polyhedron_pack(const double *p, size_t n, size_t k, struct shape_record *rec,
                             double (*extra)[4])
 {
     double lo[3], hi[3];
-    if (!polyhedron_bounds(p, n, k, lo, hi))
-        for (int a = 0; a < 3; a++)
-            lo[a] = 1, hi[a] = 0;
+    bool boxed = polyhedron_bounds(p, n, k, lo, hi);
+    for (int a = 0; a < 3; a++)
+        boxed = boxed && fabs(lo[a]) <= FLT_MAX && fabs(hi[a]) <= FLT_MAX;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = boxed ? (float)lo[a] : 1;
+        hi[a] = boxed ? (float)hi[a] : 0;
+    }
     rec->row[0][0] = (double)(n / 4);
     record_row(rec, 1, lo, 0);
     record_row(rec, 2, hi, 0);
