@@ -37,15 +37,13 @@ real recenter(rvec3 c, inout rvec3 o, rvec3 d)
 struct Span {
     real t_in, t_out;      // may be -NO_HIT / NO_HIT: no bound on that side
     int part_in, part_out; // the part crossed there
-    // Under SIGNATURES (edge_graze): the latest entry but one, its part,
-    // and |n.d| of the faces crossed at t_in, t_out and t_in2 (0 where
-    // not flat).
+    // Under SIGNATURES (edge_graze): the latest entry but one, and |n.d|
+    // of the faces crossed at t_in, t_out and t_in2 (0 where not flat).
     real t_in2;
-    int part_in2;
     float cos_in, cos_out, cos_in2;
 };
 
-const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0, -NO_HIT, 0, 0.0, 0.0, 0.0);
+const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0, -NO_HIT, 0.0, 0.0, 0.0);
 
 // Narrows s to [t0, t1], entering through part p0, leaving through p1,
 // flat faces crossed at |n.d| = cosine there.
@@ -54,7 +52,6 @@ void clip(inout Span s, real t0, real t1, int p0, int p1, float cosine)
     if (t0 > s.t_in) {
         if (SIGNATURES) {
             s.t_in2 = s.t_in;
-            s.part_in2 = s.part_in;
             s.cos_in2 = s.cos_in;
             s.cos_in = cosine;
         }
@@ -62,7 +59,6 @@ void clip(inout Span s, real t0, real t1, int p0, int p1, float cosine)
         s.part_in = p0;
     } else if (SIGNATURES && t0 > s.t_in2) {
         s.t_in2 = t0;
-        s.part_in2 = p0;
         s.cos_in2 = cosine;
     }
     if (t1 < s.t_out) {
@@ -82,28 +78,6 @@ float across(real gap, float a, float b)
     return 0.5 * float(abs(gap)) * min(a, b);
 }
 
-// Exactly how far: moved across by e, the crossing of face n moves along
-// the ray by -(n.e) / (n.d), so the gap closes at |P (n1 / n1.d - n2 /
-// n2.d)| per unit of e, P taking out d's part (nearly coplanar faces,
-// crossed at nearly the same distance far from where they meet, close it
-// slowly).
-float across_faces(real gap, rvec3 n1, rvec3 n2, rvec3 d)
-{
-    vec3 g = vec3(n1 / rdot(n1, d) - n2 / rdot(n2, d));
-    float closing = length(g - dot(g, vec3(d)) * vec3(d));
-    return closing > 0.0 ? float(abs(gap)) / closing : NO_EDGE;
-}
-
-// The outward normal of a box's or a polyhedron's face `part`.
-rvec3 flat_face(int i, bool box, int part)
-{
-    if (!box)
-        return extra_row(object_ids(i).w + part).xyz;
-    rvec3 n = rvec3(0.0);
-    n[part % 3] = part >= 3 ? 1.0 : -1.0;
-    return n;
-}
-
 // Under SIGNATURES, edge becomes where a ray from outside passes an edge
 // of a solid bounded by flat faces nearer than it may be off (doubt.x at
 // its origin, doubt.y radians in its direction, and this test's own
@@ -119,25 +93,16 @@ rvec3 flat_face(int i, bool box, int part)
 // SIGNATURES, tests the solid as a plain loop does, so that both mark the
 // same pixels (an open polyhedron, tested by every ray, has no box: lo >
 // hi). Doubts larger still are SENSITIVE's.
-void edge_graze(Span s, int i, bool box, rvec3 o, rvec3 d, vec2 doubt, rvec3 lo, rvec3 hi,
-                inout float edge)
+void edge_graze(Span s, rvec3 o, rvec3 d, vec2 doubt, rvec3 lo, rvec3 hi, inout float edge)
 {
     if (!SIGNATURES || !(s.t_in > 0.0 && s.t_out < NO_HIT))
         return;
-    bool tie = s.t_in2 > -NO_HIT && s.t_in <= s.t_out;
     float near = across(s.t_in - s.t_out, s.cos_in, s.cos_out);
-    if (tie)
+    if (s.t_in2 > -NO_HIT && s.t_in <= s.t_out)
         near = min(near, across(s.t_in - s.t_in2, s.cos_in, s.cos_in2));
     float t = float(max(s.t_in, s.t_out));
     float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + t);
     if (near >= reach || reach > float(TP2_EDGE_REACH) * float(frame.eye.w))
-        return;
-    // Near by the cheap bound (seldom): how near exactly.
-    rvec3 n_in = flat_face(i, box, s.part_in);
-    near = across_faces(s.t_in - s.t_out, n_in, flat_face(i, box, s.part_out), d);
-    if (tie)
-        near = min(near, across_faces(s.t_in - s.t_in2, n_in, flat_face(i, box, s.part_in2), d));
-    if (near >= reach)
         return;
     if (s.t_in > s.t_out && lo.x <= hi.x) { // missed: how far from its box (if any)
         rvec3 q = o + (0.5 * (s.t_in + s.t_out)) * d;
@@ -273,7 +238,7 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt,
         }
     }
     if (!on)
-        edge_graze(s, i, false, o, d, doubt, object_row(i, 1).xyz, object_row(i, 2).xyz, edge);
+        edge_graze(s, o, d, doubt, object_row(i, 1).xyz, object_row(i, 2).xyz, edge);
     return convex_hit(s, on, inward, part);
 }
 
@@ -295,7 +260,7 @@ real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, inout fl
     clip_slab(s, o.y, d.y, lo.y, hi.y, 1, 4);
     clip_slab(s, o.z, d.z, lo.z, hi.z, 2, 5);
     if (!on)
-        edge_graze(s, i, true, o, d, doubt, lo, hi, edge);
+        edge_graze(s, o, d, doubt, lo, hi, edge);
     return convex_hit(s, on, inward, part);
 }
 
