@@ -139,7 +139,10 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
             bool grazed = SIGNATURES && edge < NO_EDGE;
             if (grazed && edge <= h.t)
                 h.edge = min(h.edge, edge);
-            if (t < h.t && !(any_hit && grazed)) {
+            // An exact tie goes to the first object in the layout, as
+            // in a plain loop, whatever order the BVH tests them in (it
+            // differs where --precision auto's float pass grows boxes).
+            if ((t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed)) {
                 h = Hit(t, i, part, h.t, h.object, h.graze, any_hit ? NO_EDGE : h.edge);
                 if (any_hit)
                     break;

@@ -31,12 +31,14 @@
 // (self-hits are ruled out by Start, not by this).
 #ifdef TP2_DOUBLE
 #define TP2_REL_EPS 5.6843418860808015e-14LF // 2^-44
+#define REAL_EPSILON 1.1102230246251565e-16LF // the unit roundoff, 2^-53
 
 real rdot(rvec3 a, rvec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 real rlength(rvec3 v) { return sqrt(rdot(v, v)); }
 rvec3 rnormalize(rvec3 v) { return v / rlength(v); }
 #else
 #define TP2_REL_EPS 9.5367431640625e-7 // 2^-20
+#define REAL_EPSILON 5.9604645e-8 // the unit roundoff, 2^-24
 
 real rdot(rvec3 a, rvec3 b) { return dot(a, b); }
 real rlength(rvec3 v) { return length(v); }

@@ -532,6 +532,19 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, out real tw)
     return uvw;
 }
 
+// Whether a ray along d lies in triangle i's plane to within rounding
+// (|n.d| at most 4 units of the precision's roundoff). The model meets
+// such a triangle nowhere (u + v + w = 0), but rounding leaves u, v and w
+// all noise, which may agree in sign: a "hit" at a noise distance, on a
+// ray that need not pass near the triangle (a shadow ray whose light and
+// point both lie in the plane of a triangle seen edge-on). Asked only of
+// a hit, so the unit normal (the corners' w) is read only then.
+bool edge_on(int i, rvec3 d)
+{
+    rvec3 n = rvec3(object_row(i, 0).w, object_row(i, 1).w, object_row(i, 2).w);
+    return abs(rdot(n, d)) <= 4.0 * REAL_EPSILON;
+}
+
 real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
 {
     if (on)
@@ -541,7 +554,7 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
     if (any(lessThan(uvw, rvec3(0.0))) && any(greaterThan(uvw, rvec3(0.0))))
         return NO_HIT;
     real det = uvw.x + uvw.y + uvw.z;
-    if (det == 0.0)
+    if (det == 0.0 || edge_on(i, d))
         return NO_HIT;
     real t = tw / det;
     return t > 0.0 ? t : NO_HIT;
