@@ -12,6 +12,7 @@ struct Hit {
     int part;   // which part of it (a face, a cap): shapes.glsl
     real next;  // under SIGNATURES: the nearest other crossing tested (signature.glsl),
     int next_object; // and its object
+    int next_part;   // and part
     float graze; // and how near it passed a sphere's surface (shapes.glsl: hit_sphere)
     float edge;  // and where it passed a flat solid's edge within its doubt
                  // (shapes.glsl: edge_graze), if nearer than the hit
@@ -112,7 +113,7 @@ rvec3 safe_inverse(rvec3 d)
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first,
                 vec2 doubt)
 {
-    Hit h = Hit(tmax, -1, 0, tmax, -1, NO_GRAZE, NO_EDGE);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);
@@ -143,12 +144,13 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
             // in a plain loop, whatever order the BVH tests them in (it
             // differs where --precision auto's float pass grows boxes).
             if ((t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed)) {
-                h = Hit(t, i, part, h.t, h.object, h.graze, any_hit ? NO_EDGE : h.edge);
+                h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
                 if (any_hit)
                     break;
             } else if (SIGNATURES && t < h.next) {
                 h.next = t;
                 h.next_object = i;
+                h.next_part = part;
             }
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out

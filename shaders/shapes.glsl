@@ -22,6 +22,11 @@ real max_abs(rvec3 p)
     return max(a.x, max(a.y, a.z));
 }
 
+float max_abs2(rvec2 p)
+{
+    return float(max(abs(p.x), abs(p.y)));
+}
+
 // Moves o along the ray to where it passes closest to c and returns how
 // far: quadratics and quartics formed there keep the size of the object,
 // not of the distance, however far the camera.
@@ -37,13 +42,14 @@ real recenter(rvec3 c, inout rvec3 o, rvec3 d)
 struct Span {
     real t_in, t_out;      // may be -NO_HIT / NO_HIT: no bound on that side
     int part_in, part_out; // the part crossed there
-    // Under SIGNATURES (edge_graze): the latest entry but one, and |n.d|
-    // of the faces crossed at t_in, t_out and t_in2 (0 where not flat).
-    real t_in2;
-    float cos_in, cos_out, cos_in2;
+    // Under SIGNATURES (edge_graze, exit_graze): the latest entry but one,
+    // the earliest exit but one, and |n.d| of the faces crossed at t_in,
+    // t_out, t_in2 and t_out2 (0 where not flat).
+    real t_in2, t_out2;
+    float cos_in, cos_out, cos_in2, cos_out2;
 };
 
-const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0, -NO_HIT, 0.0, 0.0, 0.0);
+const Span WHOLE_LINE = Span(-NO_HIT, NO_HIT, 0, 0, -NO_HIT, NO_HIT, 0.0, 0.0, 0.0, 0.0);
 
 // Narrows s to [t0, t1], entering through part p0, leaving through p1,
 // flat faces crossed at |n.d| = cosine there.
@@ -62,10 +68,16 @@ void clip(inout Span s, real t0, real t1, int p0, int p1, float cosine)
         s.cos_in2 = cosine;
     }
     if (t1 < s.t_out) {
+        if (SIGNATURES) {
+            s.t_out2 = s.t_out;
+            s.cos_out2 = s.cos_out;
+            s.cos_out = cosine;
+        }
         s.t_out = t1;
         s.part_out = p1;
-        if (SIGNATURES)
-            s.cos_out = cosine;
+    } else if (SIGNATURES && t1 < s.t_out2) {
+        s.t_out2 = t1;
+        s.cos_out2 = cosine;
     }
 }
 
@@ -110,6 +122,20 @@ void edge_graze(Span s, rvec3 o, rvec3 d, vec2 doubt, rvec3 lo, rvec3 hi, inout 
             return;
     }
     edge = float(min(s.t_in, s.t_out));
+}
+
+// The same for a ray inside a solid (or on it, going in), whose nearest
+// two exits are t1 <= t2 through faces at |n.d| = c1 and c2: the edge
+// where they meet decides which face it leaves by (seen through a glass
+// box, the far edges of the box).
+void exit_graze(real t1, float c1, real t2, float c2, rvec3 o, vec2 doubt, inout float edge)
+{
+    if (!SIGNATURES || !(t1 > 0.0 && t2 < NO_HIT))
+        return;
+    float t = float(t1);
+    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + t);
+    if (across(t1 - t2, c1, c2) < reach && reach <= float(TP2_EDGE_REACH) * float(frame.eye.w))
+        edge = t;
 }
 
 // Clips s by the slab lo <= oa + t da <= hi of a ray whose coordinate along
@@ -214,6 +240,13 @@ void onto_plane(rvec4 plane, inout rvec3 p, out rvec3 n, out real scale)
 
 // ---- polyhedron: a.x = face count; faces in extra rows as planes -----------
 
+// Whether exit_graze counts for span s: the ray starts inside the solid,
+// or on it going in.
+bool inside_span(Span s, bool on, bool inward)
+{
+    return (on ? inward : s.t_in <= 0.0) && s.t_in <= s.t_out && s.t_out > 0.0;
+}
+
 // The faces whose outward normals point against the ray are where it
 // enters; the latest such entry and the earliest exit bound the span.
 real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt,
@@ -239,6 +272,8 @@ real hit_polyhedron(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt,
     }
     if (!on)
         edge_graze(s, o, d, doubt, object_row(i, 1).xyz, object_row(i, 2).xyz, edge);
+    if (SIGNATURES && inside_span(s, on, inward))
+        exit_graze(s.t_out, s.cos_out, s.t_out2, s.cos_out2, o, doubt, edge);
     return convex_hit(s, on, inward, part);
 }
 
@@ -261,6 +296,8 @@ real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, inout fl
     clip_slab(s, o.z, d.z, lo.z, hi.z, 2, 5);
     if (!on)
         edge_graze(s, o, d, doubt, lo, hi, edge);
+    if (SIGNATURES && inside_span(s, on, inward))
+        exit_graze(s.t_out, s.cos_out, s.t_out2, s.cos_out2, o, doubt, edge);
     return convex_hit(s, on, inward, part);
 }
 
@@ -502,13 +539,59 @@ void surface_quadric(int i, rvec3 d, inout rvec3 p, out rvec3 n, out real scale,
 
 // ---- triangle: a, b, c = corners, unit normal in their w ---------------
 
+// The edge test of edge_graze for a triangle: edge becomes where the ray
+// passes one of its edges nearer than it may be off (doubt as there, and
+// this test's own rounding), hit or missed, if ahead. Edge bc's side is
+// u's sign, and u is bc's length in the sheared plane times the ray's
+// distance from it there; a move of the ray by e moves it in that plane
+// by at most (1 + sqrt(2)) e (the shear's entries are at most 1). The ray
+// passes the segment, not its line beyond a corner, where v and w have
+// one sign (or near a corner, where two edges are near). A mesh whose
+// edges lie along a row of pixel centers flips a run of pixels, as a box
+// does (tests/stress/triangle-edges-on-pixel-rows.txt).
+// `sides` bounds each edge's length in the sheared plane (sqrt(2) times
+// it is at least the length), `along` the corners' least and greatest t,
+// `size` their largest coordinate; `spans`, whether the corners lie on
+// both sides of the ray in the sheared plane, along its wider axis.
+void triangle_graze(rvec3 uvw, real tw, vec3 sides, vec2 along, float size, bool spans,
+                    rvec3 o, vec2 doubt, inout float edge)
+{
+    if (!(along.y > 0.0))
+        return;
+    real det = uvw.x + uvw.y + uvw.z;
+    // where the ray meets the plane (if it does: else, as far as the
+    // farthest corner, for the reach)
+    float t = det != 0.0 ? float(tw / det) : along.y;
+    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + size);
+    if (reach > float(TP2_EDGE_REACH) * float(frame.eye.w))
+        return;
+    // |u| = distance times length <= (1 + sqrt(2)) reach times sqrt(2) sides
+    bvec3 near = lessThanEqual(abs(vec3(uvw)), 3.6 * reach * sides);
+    bvec3 pos = greaterThanEqual(uvw, rvec3(0.0));
+    bvec3 agree = equal(pos.yzx, pos.zxy); // the other two weights agree
+    bool corner = (near.x && (near.y || near.z)) || (near.y && near.z);
+    // Near all three: seen edge-on (or smaller than the reach), from its
+    // nearest corner; only where the ray passes through it in the sheared
+    // plane, as an edge-on triangle's plane holds rays far beyond it too,
+    // which the BVH's boxes keep from it (the rest are near an edge).
+    if (all(near))
+        edge = spans ? max(along.x, 0.0) : edge;
+    else if (t > 0.0 && (corner || any(bvec3(near.x && agree.x, near.y && agree.y,
+                                                 near.z && agree.z))))
+        edge = t;
+}
+
 // Watertight (Woop, Benthin and Wald 2013): the ray becomes the z axis by
 // a permutation and a shear, and each edge's side is decided by a 2D
 // cross product computed the same way for the two triangles sharing it, so
 // no ray slips between them. Gives the corners' weights (u, v, w) of the
 // point the ray's line meets the triangle's plane (their sum is not 1),
-// and how far along the ray it is, t = tw / (u + v + w).
-rvec3 triangle_weights(int i, rvec3 o, rvec3 d, out real tw)
+// and how far along the ray it is, t = tw / (u + v + w). With `graze`,
+// under SIGNATURES, the edge test too (triangle_graze), here where the
+// corners are at hand: against the most reach that counts first, which
+// most rays pass no edge within, so that the rest is skipped.
+rvec3 triangle_weights(int i, rvec3 o, rvec3 d, bool graze, vec2 doubt, out real tw,
+                       inout float edge)
 {
     rvec3 ad = abs(d);
     // Permute so that z is d's largest component, keeping the winding.
@@ -529,6 +612,21 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, out real tw)
     rvec3 uvw = rvec3(sc.x * sb.y - sc.y * sb.x, sa.x * sc.y - sa.y * sc.x,
                       sb.x * sa.y - sb.y * sa.x);
     tw = (uvw.x * pa.z + uvw.y * pb.z + uvw.z * pc.z) * shear.z;
+    if (SIGNATURES && graze) {
+        // each edge's length in the sheared plane is at most sqrt(2) times this
+        vec3 sides = vec3(max_abs2(sb - sc), max_abs2(sc - sa), max_abs2(sa - sb));
+        float most = float(TP2_EDGE_REACH) * float(frame.eye.w);
+        if (any(lessThanEqual(abs(vec3(uvw)), (3.6 * most) * sides))) {
+            vec3 z = vec3(rvec3(pa.z, pb.z, pc.z) * shear.z); // the corners' t
+            float size = float(max(max_abs(pa), max(max_abs(pb), max_abs(pc))));
+            // whether the ray's trace (0, 0) lies between the corners
+            // along the wider of the two axes (for triangle_graze's edge-on)
+            vec2 lo = vec2(min(sa, min(sb, sc))), hi = vec2(max(sa, max(sb, sc)));
+            bvec2 spans = bvec2(lo.x <= 0.0 && hi.x >= 0.0, lo.y <= 0.0 && hi.y >= 0.0);
+            triangle_graze(uvw, tw, sides, vec2(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z))),
+                           size, hi.x - lo.x >= hi.y - lo.y ? spans.x : spans.y, o, doubt, edge);
+        }
+    }
     return uvw;
 }
 
@@ -545,12 +643,12 @@ bool edge_on(int i, rvec3 d)
     return abs(rdot(n, d)) <= 4.0 * REAL_EPSILON;
 }
 
-real hit_triangle(int i, rvec3 o, rvec3 d, bool on)
+real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge)
 {
     if (on)
         return NO_HIT;
     real tw;
-    rvec3 uvw = triangle_weights(i, o, d, tw);
+    rvec3 uvw = triangle_weights(i, o, d, true, doubt, tw, edge);
     if (any(lessThan(uvw, rvec3(0.0))) && any(greaterThan(uvw, rvec3(0.0))))
         return NO_HIT;
     real det = uvw.x + uvw.y + uvw.z;
@@ -571,7 +669,8 @@ void surface_triangle(int i, rvec3 o, rvec3 d, inout rvec3 p, out rvec3 n, out r
     rvec4 c = object_row(i, 2);
     n = rvec3(a.w, b.w, c.w);
     real tw;
-    rvec3 uvw = triangle_weights(i, o, d, tw);
+    float edge = NO_EDGE; // (no edge test here)
+    rvec3 uvw = triangle_weights(i, o, d, false, vec2(0.0), tw, edge);
     uvw /= uvw.x + uvw.y + uvw.z;
     p = uvw.x * a.xyz + uvw.y * b.xyz + uvw.z * c.xyz;
     scale = max(max_abs(a.xyz), max(max_abs(b.xyz), max_abs(c.xyz)));
@@ -611,7 +710,7 @@ real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, out i
         return hit_plane(i, o, d, on);
 #ifdef TP2_FACETED // the builds with faces (see CMakeLists.txt)
     if (USES_SHAPE(TP2_SHAPE_TRIANGLE) && kind == TP2_SHAPE_TRIANGLE)
-        return hit_triangle(i, o, d, on);
+        return hit_triangle(i, o, d, on, doubt, edge);
     if (USES_SHAPE(TP2_SHAPE_BOX) && kind == TP2_SHAPE_BOX)
         return hit_box(i, o, d, on, inward, doubt, edge, part);
     if (USES_SHAPE(TP2_SHAPE_POLYHEDRON) && kind == TP2_SHAPE_POLYHEDRON)
@@ -688,16 +787,35 @@ bool flat_kind(int i)
            kind == TP2_SHAPE_TRIANGLE;
 }
 
+// The unit normal of part `part` of flat object i (flat_kind), either way.
+rvec3 flat_normal(int i, int part)
+{
+    int kind = shape_of(i);
+    if (kind == TP2_SHAPE_PLANE)
+        return object_row(i, 0).xyz;
+    if (kind == TP2_SHAPE_TRIANGLE)
+        return rvec3(object_row(i, 0).w, object_row(i, 1).w, object_row(i, 2).w);
+    if (kind == TP2_SHAPE_POLYHEDRON)
+        return extra_row(object_ids(i).w + part).xyz;
+    rvec3 n = rvec3(0.0); // a box: part % 3 is the axis
+    n[part % 3] = 1.0;
+    return n;
+}
+
 // Whether crossings of objects a and b that float finds at one distance
 // are on faces that coincide in double too (a box on the floor), so that
-// the same object wins in both: both flat, and neither has a face near
-// another object's face without being on its plane (a box top at 0.3
-// under a plane at 0.3000000001: TP2_SHAPE_NEAR_TWIN, host/twins.h).
-// b < 0: no second crossing.
-bool coincident_faces(int a, int b)
+// the same object wins in both: both flat, on one plane (the hit's normal
+// n and part b_part of b agree), and neither has a face near another
+// object's face without being on its plane (a box top at 0.3 under a
+// plane at 0.3000000001: TP2_SHAPE_NEAR_TWIN, host/twins.h). Two faces
+// that cross tie in float along the line where they meet, which may lie
+// along a row of pixel centers (a mirror floor meeting a wall there),
+// where double orders them its own way. b < 0: no second crossing.
+bool coincident_faces(int a, int b, int b_part, rvec3 n)
 {
     return b >= 0 && flat_kind(a) && flat_kind(b) &&
-           ((object_ids(a).x | object_ids(b).x) & TP2_SHAPE_NEAR_TWIN) == 0;
+           ((object_ids(a).x | object_ids(b).x) & TP2_SHAPE_NEAR_TWIN) == 0 &&
+           abs(float(rdot(n, flat_normal(b, b_part)))) >= 1.0 - 1.0 / 65536.0;
 }
 
 // Whether a ray through object i's surface goes into an inside (a

@@ -113,7 +113,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
         sig |= UNSURE;
     float margin = float(h.next - h.t);
     if (at_stake(stake) && nearer_unsure(margin, hd, float(h.t), sizes) &&
-        (margin > 0.0 || !coincident_faces(h.object, h.next_object)))
+        (margin > 0.0 || !coincident_faces(h.object, h.next_object, h.next_part, n)))
         sig |= UNSURE; // which of two crossings is nearer
     rvec3 nf = entering ? n : -n;
     rvec3 offset = nf * (scale * TP2_REL_EPS);

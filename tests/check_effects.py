@@ -607,6 +607,17 @@ def case_ellipsoids_in_bvh(c):
     expect_in_bvh(c, scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6)), 36, (96, 72), 500)
 
 
+def case_triangle_edges_in_bvh(c):
+    """The triangles' edge test marks the same pixels through the BVH
+    (whose boxes grow under auto) as in a plain loop, and exact ties go to
+    the same object whatever order the BVH tests them in: the triangles of
+    tests/stress/triangle-edges-on-pixel-rows, edges along rows of pixel
+    centers (so at 400 x 300), one light in the plane of a triangle seen
+    edge-on (a shadow ray in its plane meets nothing, in the loop too)."""
+    scene = os.path.join(HERE, "stress", "triangle-edges-on-pixel-rows.txt")
+    expect_in_bvh(c, scene, 32, (400, 300), 1000)
+
+
 def geodesic_grid(n_side, faces):
     """n_side^2 polyhedra of `faces` faces each (the tangent planes of a
     sphere of radius 0.3 at spread directions: nearly round), some glass,
