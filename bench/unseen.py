@@ -4,6 +4,7 @@
     python3 bench/unseen.py [--tp2 build/tp2] [--imgcmp build/tests/tp2-imgcmp]
                             [--seeds 1-80] [--size 200 150] [--keep DIR] [--extras]
                             [--sphere-floor] [--open] [--touching] [--aligned]
+                            [--triangles]
                             [--reuse-exact]
 
 For each seed, writes a random scene (make_scene below: 3-12 objects of
@@ -46,7 +47,9 @@ corners lie on odd coordinates at distances of 4, 12, 20, 60 or 100, so
 that their edges lie along rows and columns of pixel centers (a slope of
 odd/300), among spheres, a floor, flat mirrors and glass, the whole
 turned to another axis and moved off 0 (a course file's axis-aligned
-boxes, seen straight on)."""
+boxes, seen straight on). --triangles adds to those, from a stream of its
+own, triangles and a triangle mesh whose edges lie on such rows and
+columns, some seen edge-on."""
 import argparse
 import math
 import os
@@ -381,8 +384,9 @@ def add_extras(r, scale, off, dist, nlights, pigments, objects):
     return [""] + directives if directives else []
 
 
-def make_aligned_scene(seed):
-    """--aligned: scene text for seed (deterministic; see the top)."""
+def make_aligned_scene(seed, triangles=False, files=None):
+    """--aligned: scene text for seed (deterministic; see the top); with
+    triangles, add_aligned_triangles' too (its mesh into files)."""
     r = random.Random(f"aligned-{seed}")
     axes = [0, 1, 2]
     r.shuffle(axes)
@@ -448,9 +452,57 @@ def make_aligned_scene(seed):
     if r.random() < 0.5:  # a flat mirror wall beside the view
         side = r.choice([-1, 1])
         add(f"plane {plane((-side, 0, 0), side * odd(7, 20))}", 2)
+    if triangles:
+        add_aligned_triangles(seed, p, len(pigments), objects, files)
     return "\n".join(head + lights + ["", str(len(pigments))] + pigments +
                      ["", str(len(finishes))] + finishes +
                      ["", str(len(objects))] + objects) + "\n"
+
+
+def add_aligned_triangles(seed, p, npigments, objects, files):
+    """--aligned --triangles, from a stream of its own: triangles whose
+    edges lie on rows and columns of pixel centers (corners on odd
+    coordinates at ALIGNED_DEPTHS), some seen edge-on (their plane holds
+    the eye and such a row or column), two sharing an edge, and a mesh on
+    such a grid (unseen-mesh-SEED.obj), its vertices at two depths."""
+    r = random.Random(f"aligned-triangles-{seed}")
+
+    def odd(lo, hi):
+        return r.randrange(lo | 1, hi, 2)
+
+    def add(text):
+        objects.append(f"{r.randrange(npigments - 1)} {r.choice([0, 0, 1, 2, 3])} {text}")
+
+    scales = [(4, 3), (4, 5), (12, 5), (20, 3), (20, 5), (4, 25)]  # near, far / near
+    for _ in range(r.randint(2, 6)):
+        near, k = r.choice(scales)
+        x0, y0 = odd(-near, near - 1), odd(-near * 3 // 4, near * 3 // 4 - 1)
+        a, b = 2 * r.choice([-2, -1, 1, 2]), 2 * r.choice([-2, -1, 1, 2])
+        kind = r.random()
+        if kind < 0.4:  # facing the camera: edges along a row, a column, a diagonal
+            add(f"triangle {p(x0, y0, -near)} {p(x0 + a, y0, -near)} {p(x0, y0 + b, -near)}")
+        elif kind < 0.7:  # edge-on: its plane holds the eye and the column x / z = -x0 / near
+            add(f"triangle {p(x0, y0, -near)} {p(x0, y0 + b, -near)} "
+                f"{p(x0 * k, (y0 + b / 2) * k, -near * k)}")
+        else:  # two sharing an edge along a row, tilted back
+            c = (x0 + a / 2, y0 + b, -near - r.randint(1, 3))
+            add(f"triangle {p(x0, y0, -near)} {p(x0 + a, y0, -near)} {p(*c)}")
+            add(f"triangle {p(x0 + a, y0, -near)} {p(x0, y0, -near)} "
+                f"{p(c[0], y0 - b, c[2])}")
+    if r.random() < 0.7:
+        near = r.choice([4, 12, 20])
+        half = near * 3 // 4
+        nx, ny = r.randint(2, min(6, near - 1)), r.randint(1, min(5, half - 1))
+        x0, y0 = odd(-near, near - 2 * nx), odd(-half, half - 2 * ny)
+        lines = [f"v {p(x0 + 2 * i, y0 + 2 * j, -near - (i + j) % 2)}"
+                 for j in range(ny + 1) for i in range(nx + 1)]
+        for j in range(ny):
+            for i in range(nx):
+                v = j * (nx + 1) + i + 1
+                lines += [f"f {v} {v + 1} {v + nx + 2}", f"f {v} {v + nx + 2} {v + nx + 1}"]
+        name = f"unseen-mesh-{seed}.obj"
+        files[name] = "\n".join(lines) + "\n"
+        add(f"mesh {name}")
 
 
 def render(tp2, scene, out, size, options):
@@ -484,7 +536,11 @@ def main():
                     help="flat faces on others or a hair off them (boxes, triangles, planes)")
     ap.add_argument("--aligned", action="store_true",
                     help="instead: box and cube edges along rows of pixel centers (400 x 300)")
+    ap.add_argument("--triangles", action="store_true",
+                    help="with --aligned: triangles and a mesh on such rows too")
     args = ap.parse_args()
+    if args.triangles and not args.aligned:
+        ap.error("--triangles goes with --aligned")
     if args.aligned and args.size != ["400", "300"]:
         ap.error("--aligned scenes are aligned to 400 x 300's pixel centers: --size 400 300")
     folder = args.keep or tempfile.mkdtemp(prefix="tp2-unseen-")
@@ -497,7 +553,7 @@ def main():
         scene = os.path.join(folder, f"s{seed}.txt")
         files = {}
         with open(scene, "w") as f:
-            f.write(make_aligned_scene(seed) if args.aligned else
+            f.write(make_aligned_scene(seed, args.triangles, files) if args.aligned else
                     make_scene(seed, args.extras, args.sphere_floor, args.open, files,
                                args.touching))
         for name, text in files.items():
