@@ -14,8 +14,9 @@ struct Hit {
     int next_object; // and its object
     int next_part;   // and part
     float graze; // and how near it passed a sphere's surface (shapes.glsl: hit_sphere)
-    float edge;  // and where it passed a flat solid's edge within its doubt
-                 // (shapes.glsl: edge_graze), if nearer than the hit
+    float edge;  // and where it passed a flat solid's or a triangle's edge
+                 // within its doubt (shapes.glsl: edge_graze, exit_graze,
+                 // triangle_graze), if nearer than the hit
 };
 
 // The surface a ray starts on, which rounding must not let it hit again

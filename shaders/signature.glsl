@@ -11,8 +11,9 @@
 // internal reflection) was within its doubt of flipping, a texture's
 // or gradient's color may slide by a level with the hit point
 // (trace.comp, pigment_slope), an area light's penumbra may
-// (penumbra_seen), or a ray passed a flat solid's edge within its doubt
-// (edges_seen, at the end).
+// (penumbra_seen), or a ray passed a flat solid's or a triangle's edge
+// within its doubt, or two flat faces that cross tie (edges_seen, at the
+// end; trace.comp, coincident_faces).
 // SENSITIVE: a boundary seen there may move by frame.limits.y pixels or
 // more. A pixel is traced again in double where it is UNSURE, or where
 // its hash differs from a neighbour's and one of the two is SENSITIVE:
@@ -291,8 +292,9 @@ void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float siz
 // factor of 2, as shadow_grazes'). Neighbours find the boundaries of
 // which object a ray meets only where rounding may move them by a share
 // of a pixel (SENSITIVE); a straight edge along a row of pixel centers (a
-// box's, seen from a camera on its axes: README.TXT "Accuracy") flips a
-// run of pixels however little it moves. edge_graze tests only doubts
+// box's or a mesh's, seen from a camera on its axes: README.TXT
+// "Accuracy") flips a run of pixels however little it moves. The edge
+// tests (edge_graze, exit_graze, triangle_graze) count only doubts
 // that reach at most TP2_EDGE_REACH of the scene's scale (camera rays,
 // flat mirrors' and flat glass's): a beam spread by curved mirrors and
 // lenses is SENSITIVE's.
