@@ -609,11 +609,11 @@ def case_ellipsoids_in_bvh(c):
 
 def case_triangle_edges_in_bvh(c):
     """The triangles' edge test marks the same pixels through the BVH
-    (whose boxes grow under auto) as in a plain loop, and exact ties go to
-    the same object whatever order the BVH tests them in: the triangles of
+    (whose boxes grow under auto) as in a plain loop: the triangles of
     tests/stress/triangle-edges-on-pixel-rows, edges along rows of pixel
     centers (so at 400 x 300), one light in the plane of a triangle seen
-    edge-on (a shadow ray in its plane meets nothing, in the loop too)."""
+    edge-on (a shadow ray in its plane meets nothing, in the loop too).
+    (Exact ties between triangles are tests/stress/shared-edge-ties'.)"""
     scene = os.path.join(HERE, "stress", "triangle-edges-on-pixel-rows.txt")
     expect_in_bvh(c, scene, 32, (400, 300), 1000)
 
