@@ -90,6 +90,21 @@ float across(real gap, float a, float b)
     return 0.5 * float(abs(gap)) * min(a, b);
 }
 
+// How far an edge test's ray may be off where it is t along: doubt.x at
+// its origin, doubt.y radians in its direction, and the test's own
+// rounding on numbers of the size of o and `size` (the edge tests below).
+float edge_reach(rvec3 o, vec2 doubt, float t, float size)
+{
+    return doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + size);
+}
+
+// The most reach an edge test counts: TP2_EDGE_REACH of the scene's scale
+// (what the BVH's boxes grow by four times under SIGNATURES).
+float most_reach()
+{
+    return float(TP2_EDGE_REACH) * float(frame.eye.w);
+}
+
 // Under SIGNATURES, edge becomes where a ray from outside passes an edge
 // of a solid bounded by flat faces nearer than it may be off (doubt.x at
 // its origin, doubt.y radians in its direction, and this test's own
@@ -113,8 +128,8 @@ void edge_graze(Span s, rvec3 o, rvec3 d, vec2 doubt, rvec3 lo, rvec3 hi, inout 
     if (s.t_in2 > -NO_HIT && s.t_in <= s.t_out)
         near = min(near, across(s.t_in - s.t_in2, s.cos_in, s.cos_in2));
     float t = float(max(s.t_in, s.t_out));
-    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + t);
-    if (near >= reach || reach > float(TP2_EDGE_REACH) * float(frame.eye.w))
+    float reach = edge_reach(o, doubt, t, t);
+    if (near >= reach || reach > most_reach())
         return;
     if (s.t_in > s.t_out && lo.x <= hi.x) { // missed: how far from its box (if any)
         rvec3 q = o + (0.5 * (s.t_in + s.t_out)) * d;
@@ -133,8 +148,8 @@ void exit_graze(real t1, float c1, real t2, float c2, rvec3 o, vec2 doubt, inout
     if (!SIGNATURES || !(t1 > 0.0 && t2 < NO_HIT))
         return;
     float t = float(t1);
-    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + t);
-    if (across(t1 - t2, c1, c2) < reach && reach <= float(TP2_EDGE_REACH) * float(frame.eye.w))
+    float reach = edge_reach(o, doubt, t, t);
+    if (across(t1 - t2, c1, c2) < reach && reach <= most_reach())
         edge = t;
 }
 
@@ -562,8 +577,8 @@ void triangle_graze(rvec3 uvw, real tw, vec3 sides, vec2 along, float size, bool
     // where the ray meets the plane (if it does: else, as far as the
     // farthest corner, for the reach)
     float t = det != 0.0 ? float(tw / det) : along.y;
-    float reach = doubt.x + doubt.y * t + 4.0 * ROUNDING * (float(max_abs(o)) + size);
-    if (reach > float(TP2_EDGE_REACH) * float(frame.eye.w))
+    float reach = edge_reach(o, doubt, t, size);
+    if (reach > most_reach())
         return;
     // |u| = distance times length <= (1 + sqrt(2)) reach times sqrt(2) sides
     bvec3 near = lessThanEqual(abs(vec3(uvw)), 3.6 * reach * sides);
@@ -615,8 +630,7 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, bool graze, vec2 doubt, out real
     if (SIGNATURES && graze) {
         // each edge's length in the sheared plane is at most sqrt(2) times this
         vec3 sides = vec3(max_abs2(sb - sc), max_abs2(sc - sa), max_abs2(sa - sb));
-        float most = float(TP2_EDGE_REACH) * float(frame.eye.w);
-        if (any(lessThanEqual(abs(vec3(uvw)), (3.6 * most) * sides))) {
+        if (any(lessThanEqual(abs(vec3(uvw)), (3.6 * most_reach()) * sides))) {
             vec3 z = vec3(rvec3(pa.z, pb.z, pc.z) * shear.z); // the corners' t
             float size = float(max(max_abs(pa), max(max_abs(pb), max_abs(pc))));
             // whether the ray's trace (0, 0) lies between the corners
