@@ -317,13 +317,19 @@ real hit_box(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, inout fl
 }
 
 // The face's coordinate is exact: the point is put on it.
+// The outward normal of a box's face `part`.
+rvec3 box_normal(int part)
+{
+    rvec3 n = rvec3(0.0);
+    n[part % 3] = part >= 3 ? 1.0 : -1.0;
+    return n;
+}
+
 void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 {
     int axis = part % 3;
-    bool high = part >= 3;
-    rvec3 corner = high ? object_row(i, 1).xyz : object_row(i, 0).xyz;
-    n = rvec3(0.0);
-    n[axis] = high ? 1.0 : -1.0;
+    rvec3 corner = part >= 3 ? object_row(i, 1).xyz : object_row(i, 0).xyz;
+    n = box_normal(part);
     p[axis] = corner[axis];
     scale = max(max_abs(p), max(max_abs(object_row(i, 0).xyz), max_abs(object_row(i, 1).xyz)));
 }
@@ -644,6 +650,12 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, bool graze, vec2 doubt, out real
     return uvw;
 }
 
+// Triangle i's unit normal (its corners' w).
+rvec3 triangle_normal(int i)
+{
+    return rvec3(object_row(i, 0).w, object_row(i, 1).w, object_row(i, 2).w);
+}
+
 // Whether a ray along d lies in triangle i's plane to within rounding
 // (|n.d| at most 4 units of the precision's roundoff). The model meets
 // such a triangle nowhere (u + v + w = 0), but rounding leaves u, v and w
@@ -653,8 +665,7 @@ rvec3 triangle_weights(int i, rvec3 o, rvec3 d, bool graze, vec2 doubt, out real
 // a hit, so the unit normal (the corners' w) is read only then.
 bool edge_on(int i, rvec3 d)
 {
-    rvec3 n = rvec3(object_row(i, 0).w, object_row(i, 1).w, object_row(i, 2).w);
-    return abs(rdot(n, d)) <= 4.0 * REAL_EPSILON;
+    return abs(rdot(triangle_normal(i), d)) <= 4.0 * REAL_EPSILON;
 }
 
 real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge)
@@ -808,12 +819,10 @@ rvec3 flat_normal(int i, int part)
     if (kind == TP2_SHAPE_PLANE)
         return object_row(i, 0).xyz;
     if (kind == TP2_SHAPE_TRIANGLE)
-        return rvec3(object_row(i, 0).w, object_row(i, 1).w, object_row(i, 2).w);
+        return triangle_normal(i);
     if (kind == TP2_SHAPE_POLYHEDRON)
         return extra_row(object_ids(i).w + part).xyz;
-    rvec3 n = rvec3(0.0); // a box: part % 3 is the axis
-    n[part % 3] = 1.0;
-    return n;
+    return box_normal(part);
 }
 
 // Whether crossings of objects a and b that float finds at one distance
