@@ -103,12 +103,15 @@ static int parse_option(int argc, char **argv, int *i, struct cli *c)
         v = option_value(argc, argv, i);
         if (v && strcmp(v, "auto") == 0)
             c->precision = PRECISION_AUTO;
+        else if (v && strcmp(v, "mixed") == 0)
+            c->precision = PRECISION_MIXED;
         else if (v && strcmp(v, "float") == 0)
             c->precision = PRECISION_FLOAT;
         else if (v && strcmp(v, "double") == 0)
             c->precision = PRECISION_DOUBLE;
         else
-            return usage_error("--precision needs 'auto', 'float' or 'double', found '%s'",
+            return usage_error("--precision needs 'auto', 'mixed', 'float' or 'double', "
+                               "found '%s'",
                                v ? v : "nothing");
     } else {
         return usage_error("unknown option '%s'", opt);

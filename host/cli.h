@@ -13,9 +13,10 @@ struct cli {
     int bvh_min;       /* --bvh-min: BVH from this many spheres; 0: default */
     double bailout;    /* --bailout: least weight of a traced ray; 0: all
                         * are traced; default 1/255, 0 with --precision double */
-    enum precision { PRECISION_AUTO, PRECISION_FLOAT, PRECISION_DOUBLE } precision;
-                       /* --precision; under auto (the default) main.c may
-                        * choose double for a scene float cannot carry */
+    enum precision { PRECISION_AUTO, PRECISION_MIXED, PRECISION_FLOAT, PRECISION_DOUBLE } precision;
+                       /* --precision; under auto (the default) and mixed
+                        * main.c may choose double for a scene float cannot
+                        * carry */
     bool validate;     /* --validate or TP2_VALIDATE=1 */
     bool stats;        /* --stats: phase times and ray counts on stderr */
     bool quiet;        /* --quiet: no progress bar */

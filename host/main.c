@@ -40,8 +40,9 @@ struct range_note {
     char what[192];
 };
 
-/* Precision for s (scene_length_limit has the rule): as asked, auto
- * meaning float with a double retrace (*retrace); double where float
+/* Precision for s (scene_length_limit has the rule): as asked, mixed
+ * and auto meaning float with a double retrace (*retrace; render.c may
+ * turn auto's into double throughout on a CPU device); double where float
  * cannot carry its lengths and --precision float was not asked for, in
  * which case *note is filled; refused (one message, -1) when the lengths
  * are past even double's bound, or past float's under --precision float. */
@@ -50,7 +51,7 @@ static int choose_precision(const struct cli *c, const struct scene *s, bool *us
 {
     double fmax_len = scene_length_limit(false), dmax_len = scene_length_limit(true);
     *use_double = c->precision == PRECISION_DOUBLE;
-    *retrace = c->precision == PRECISION_AUTO;
+    *retrace = c->precision == PRECISION_AUTO || c->precision == PRECISION_MIXED;
     *noted = false;
     if (s->max_length <= fmax_len)
         return 0;
@@ -71,7 +72,7 @@ static int choose_precision(const struct cli *c, const struct scene *s, bool *us
                 note->where, s->max_length, s->max_length_what, fmax_len);
         return -1;
     }
-    if (c->precision == PRECISION_AUTO) {
+    if (*retrace) {
         snprintf(note->what, sizeof note->what, "a coordinate or size of %.3g (%s) is beyond "
                  "float precision's range (lengths up to %.3g)", s->max_length,
                  s->max_length_what, fmax_len);
@@ -165,6 +166,7 @@ static int render_to_file(const struct cli *c, const struct scene *s, double par
         .bailout = c->bailout,
         .use_double = use_double,
         .retrace = retrace,
+        .double_on_cpu = retrace && c->precision == PRECISION_AUTO,
         .double_where = noted ? note->where : NULL,
         .double_what = noted ? note->what : NULL,
         .validate = c->validate,

@@ -109,6 +109,7 @@ struct renderer {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
     struct tracer band, retrace; /* retrace in use where band.signatures */
+    bool band_twin; /* the band pass reads the double scene: auto on a CPU device */
     struct scene_features features;
     bool count_rays;
     double pipeline_time; /* seconds spent making pipelines */
@@ -129,11 +130,18 @@ struct renderer {
     int walk_capacity;
 };
 
-/* Whether --precision auto's retrace is on: the band pass records
- * signatures exactly then. */
+/* Whether --precision mixed's (or auto's) retrace is on: the band pass
+ * records signatures exactly then. */
 static bool retracing(const struct renderer *r)
 {
     return r->band.signatures;
+}
+
+/* Whether a pass reads the double scene (the twin): the retrace pass,
+ * or the band pass where auto renders a CPU device's image in double. */
+static bool uses_twin(const struct renderer *r)
+{
+    return retracing(r) || r->band_twin;
 }
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
@@ -168,7 +176,8 @@ static VkDeviceSize band_bytes_max(const struct vkc *vk)
 }
 
 /* The input bindings whose layout depends on the precision (layout.glsl's
- * rvec4s): there the retrace pass reads the double scene's buffers. */
+ * rvec4s): there the passes in double read the double scene's buffers
+ * (where it was packed beside the float one). */
 static bool by_precision(int binding)
 {
     return binding == TP2_BINDING_FRAME || binding == TP2_BINDING_LIGHTS ||
@@ -205,7 +214,8 @@ static VkDeviceSize output_bytes(const struct renderer *r)
     return r->bytes ? sizeof(uint32_t) : TP2_PIXEL_BYTES;
 }
 
-/* The scene's buffers, filled (and the double scene's, when retracing);
+/* The scene's buffers, filled (and the double scene's where a pass reads
+ * it, in place of the float one's where the band pass does);
  * the band buffer (band_rows rows of width), its host copy, the stats
  * buffer, the walks' buffers (on CPU devices; one element elsewhere, where
  * walks finish in their first pass), and when retracing the signatures
@@ -214,8 +224,8 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
                           const struct packed_scene *twin, int width)
 {
     for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
-        if (upload(r, p, i, &r->buffers[i]) != 0 ||
-            (retracing(r) && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
+        if ((!(r->band_twin && by_precision(i)) && upload(r, p, i, &r->buffers[i]) != 0) ||
+            (uses_twin(r) && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
             return -1;
     VkDeviceSize pixels = (VkDeviceSize)r->band_rows * width;
     VkDeviceSize walks = (VkDeviceSize)r->walk_capacity;
@@ -631,7 +641,7 @@ static int join_side(struct renderer *r, struct side_make *m)
 }
 
 /* Pass t's descriptor set: every binding the band pass's buffer, but where
- * the retrace pass reads the double scene's (by_precision). */
+ * a pass in double reads the double scene's (by_precision, uses_twin). */
 static int write_descriptors(struct renderer *r, struct tracer *t)
 {
     VkDescriptorSetAllocateInfo alloc = {
@@ -644,7 +654,7 @@ static int write_descriptors(struct renderer *r, struct tracer *t)
     VkDescriptorBufferInfo infos[TP2_BINDING_COUNT];
     VkWriteDescriptorSet writes[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++) {
-        bool twin = t == &r->retrace && by_precision((int)i);
+        bool twin = (t == &r->retrace || r->band_twin) && by_precision((int)i);
         VkBuffer buffer = twin ? r->twin[i].buffer : r->buffers[i].buffer;
         infos[i] = (VkDescriptorBufferInfo){
             .buffer = buffer,
@@ -1156,9 +1166,15 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
     return 0;
 }
 
-/* The passes this device runs and how: under --precision auto a float
+/* The passes this device runs and how: under --precision mixed a float
  * pass that records signatures and a retrace pass in double, where the
- * device has shaderFloat64 and the double scene fits it (twin_fits). */
+ * device has shaderFloat64 and the double scene fits it (twin_fits).
+ * Auto is mixed but on a CPU device, where it renders the whole image in
+ * double from the double scene: there a double lane costs about twice a
+ * float one (half as many in a SIMD register), not the tens of times of
+ * most GPUs, and float's bookkeeping for the retrace costs more than that
+ * (README "Performance": on lavapipe the default took 0.93 of mixed's
+ * time, and its image is the exact model's but for pruning). */
 static void plan_passes(struct renderer *r, const struct render_options *opt,
                         const struct scene_features *f, bool twin_fits)
 {
@@ -1167,8 +1183,11 @@ static void plan_passes(struct renderer *r, const struct render_options *opt,
     r->bytes = opt->bytes;
     r->loop_guard = needs_loop_guard(&r->vk);
     r->slabs = dispatch_slabs(&r->vk);
-    r->band = (struct tracer){.use_double = opt->use_double,
-                              .signatures = opt->retrace && twin_fits && r->vk.float64};
+    bool twin = opt->retrace && twin_fits && r->vk.float64;
+    r->band_twin = twin && opt->double_on_cpu &&
+                   r->vk.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    r->band = (struct tracer){.use_double = opt->use_double || r->band_twin,
+                              .signatures = twin && !r->band_twin};
     r->retrace = (struct tracer){.use_double = true, .pixel_list = true};
     r->band.pass_rays = pass_rays(r->loop_guard, &r->band.walking);
     r->retrace.pass_rays = pass_rays(r->loop_guard, &r->retrace.walking);
@@ -1284,18 +1303,27 @@ static bool pack_done(struct pack_job *job)
     return done;
 }
 
-/* What --stats says of the precision: the one used, or auto's passes. */
+/* What --stats says of the precision: the one used, or mixed's passes,
+ * and what auto or mixed chose. */
 static void describe_precision(const struct renderer *r, const struct render_options *opt,
                                bool twin_fits, struct render_stats *st)
 {
-    const char *what = r->band.use_double ? "double" : "float";
+    const char *asked = opt->double_on_cpu ? "auto" : "mixed";
+    const char *what = r->band.use_double ? "double" : "float", *why = NULL;
     if (retracing(r))
-        what = "auto (float, then pixels on decision boundaries again in double)";
+        what = "float, then pixels on decision boundaries again in double";
+    else if (r->band_twin)
+        why = "on a CPU device double costs less than float and a retrace";
     else if (opt->retrace && !r->vk.float64)
-        what = "float (auto: the device has no shaderFloat64)";
+        why = "the device has no shaderFloat64";
     else if (opt->retrace && !twin_fits)
-        what = "float (auto: the double scene does not fit the device)";
-    snprintf(st->precision, sizeof st->precision, "%s", what);
+        why = "the double scene does not fit the device";
+    if (retracing(r))
+        snprintf(st->precision, sizeof st->precision, "%s (%s)", asked, what);
+    else if (why)
+        snprintf(st->precision, sizeof st->precision, "%s (%s: %s)", what, asked, why);
+    else
+        snprintf(st->precision, sizeof st->precision, "%s", what);
     st->retracing = retracing(r);
 }
 
@@ -1385,7 +1413,7 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     double t_buffers = clock_seconds();
     if (!early) {
         plan_passes(&r, opt, &packed.features, twin_fits);
-    } else if (!twin_fits && retracing(&r)) { /* planned as if it fit: plan again */
+    } else if (!twin_fits && uses_twin(&r)) { /* planned as if it fit: plan again */
         unmake_passes(&r);
         plan_passes(&r, opt, &packed.features, false);
         if (make_passes(&r) != 0)

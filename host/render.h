@@ -15,9 +15,12 @@ struct render_options {
     int bvh_min;       /* BVH from this many spheres; 0: the default */
     double bailout;    /* least weight of a traced ray; 0: the exact model */
     bool use_double;   /* double-precision geometry: the reference image */
-    bool retrace;      /* --precision auto: float, then the pixels on decision
-                        * boundaries again in double (where the device has
-                        * shaderFloat64 and the double scene fits it) */
+    bool retrace;      /* --precision mixed or auto: float, then the pixels on
+                        * decision boundaries again in double (where the
+                        * device has shaderFloat64 and the double scene
+                        * fits it) */
+    bool double_on_cpu; /* --precision auto: on a CPU device the whole
+                         * image in double instead (render.c, plan_passes) */
     /* Set when use_double was chosen for the scene's range, not asked for:
      * where its largest length was written ("FILE:LINE:COL") and what it
      * is. Without shaderFloat64 the render is then refused naming them;
@@ -54,7 +57,7 @@ struct render_stats {
     bool retracing;       /* auto's double retrace ran */
     uint64_t retraced;    /* pixels traced again in double */
     double retrace;       /* seconds marking and retracing them (in render) */
-    char precision[80];   /* the precision used, in words */
+    char precision[128];  /* the precision used, in words */
     char device_name[256];
 };
 

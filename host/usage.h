@@ -23,11 +23,13 @@
     "  --list-devices       list the Vulkan devices and exit\n"               \
     "  --dump-scene         print the scene as tp2 read it, as JSON, to\n"    \
     "                       stdout and exit (no output file, no device)\n"   \
-    "  --precision P        auto (default), float or double. double:\n"      \
-    "                       double-precision geometry, the reference\n"      \
-    "                       image; auto: float, then the pixels where\n"     \
-    "                       rounding can flip a decision (which object,\n"  \
-    "                       shadow, checker cell) again in double\n"        \
+    "  --precision P        auto (default), mixed, float or double.\n"        \
+    "                       double: double-precision geometry, the\n"         \
+    "                       reference image; mixed: float, then the\n"        \
+    "                       pixels where rounding can flip a decision\n"      \
+    "                       (which object, shadow, checker cell) again\n"     \
+    "                       in double; auto: double on a CPU device\n"        \
+    "                       (lavapipe), else mixed\n"                         \
     "  --spp N              samples per pixel (overrides the scene's\n"       \
     "                       'samples'; default 1, the pixel center)\n"        \
     "  --stats              print phase times and rays traced to stderr\n"    \

@@ -89,7 +89,7 @@ def case_usage_errors(c):
     c.usage_error(["--bogus", SCENE, c.out()], "tp2: unknown option '--bogus'")
     c.usage_error(["--device", SCENE, c.out()], "tp2: --device needs a device index")
     c.usage_error(["--device"], "tp2: --device needs a device index, found 'nothing'")
-    c.usage_error(["--precision", "half", SCENE, c.out()], "tp2: --precision needs 'auto', 'float' or 'double'")
+    c.usage_error(["--precision", "half", SCENE, c.out()], "tp2: --precision needs 'auto', 'mixed', 'float' or 'double'")
     c.usage_error([SCENE, c.out("out.jpg")], "tp2: cannot tell the format of")
     c.usage_error(["--bailout", "2", SCENE, c.out()], "tp2: --bailout needs a weight from 0 to 1")
     c.usage_error(["--spp", "0", SCENE, c.out()], "tp2: --spp needs a number of samples")
@@ -260,8 +260,9 @@ def far_scene(c, radius="5e19"):
 
 def case_float_range_default_double(c):
     """Lengths past float's range render in double when no --precision is
-    given, with a note naming the value and where it was written; the
-    sphere is there, green, the corners gray; --stats says double."""
+    given (or mixed is), with a note naming the value and where it was
+    written; the sphere is there, green, the corners gray; --stats says
+    double."""
     scene = far_scene(c)
     out = c.out("far.ppm")
     status, _, err = run(c.tp2, [scene, out, "9", "9"])
@@ -274,6 +275,9 @@ def case_float_range_default_double(c):
     corner = tuple(rgb[0:3])
     c.expect(middle[0] == 0 and middle[2] == 0 and middle[1] > 100, f"middle pixel {middle}")
     c.expect(corner == (128, 128, 128), f"corner pixel {corner}")
+    status, _, err = run(c.tp2, ["--precision", "mixed", scene, c.out("m.ppm"), "9", "9"])
+    c.expect(status == 0 and err == want.replace("far.ppm", "m.ppm"),
+             f"--precision mixed: exit {status}, stderr {err!r}")
     # The same image as --precision double asked for, which says nothing.
     status, _, err = run(c.tp2, ["--precision", "double", scene, c.out("d.ppm"), "9", "9"])
     c.expect(status == 0 and err == "", f"--precision double: exit {status}, stderr {err!r}")

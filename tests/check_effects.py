@@ -341,10 +341,11 @@ def case_slabs_agree(c):
     """A dispatch cut into slabs of workgroup rows, one per lavapipe thread
     (render.c, dispatch_slabs), traces every pixel once: with 1, 2, 3 and
     7 slabs the bytes are the same, at sizes whose rows of workgroups (29,
-    5) no slab count above 1 divides, in the band pass, in auto's retrace
+    5) no slab count above 1 divides, in the band pass, in mixed's retrace
     of a list of pixels (a far checkered quadric) and in walks that go on
     across passes (over the list of saved walks)."""
-    setups = (("retrace", os.path.join(HERE, "stress", "quadric-far.txt"), [], {},
+    setups = (("retrace", os.path.join(HERE, "stress", "quadric-far.txt"),
+               ["--precision", "mixed"], {},
                ["101", "227"]),
               ("walks", deep_scene(c), ["--bvh-min", "1000", "--bailout", "0"],
                {"TP2_PASS_RAYS": "7"}, ["21", "35"]))
@@ -437,10 +438,10 @@ def case_scene_read_in_place(c):
     """On a CPU device the scene's big arrays are read where they lie
     (VK_EXT_external_memory_host) instead of copied: --stats says how much,
     the validation layer accepts it, and the image is the copied scene's,
-    byte for byte, under float and auto (whose double twin is read in place
-    too)."""
+    byte for byte, under float, mixed (whose double twin is read in place
+    too) and auto (on lavapipe the double twin alone)."""
     scene = scene_file(c.tmp, "grid.txt", grid_of_spheres(230))  # 52,900 spheres
-    for precision in ("float", "auto"):
+    for precision in ("float", "mixed", "auto"):
         images, in_place = [], []
         for importing in ("1", "0"):
             out = os.path.join(c.tmp, f"{precision}-{importing}.ppm")
@@ -474,7 +475,7 @@ def case_bvh_nodes_beside(c):
 
 
 def case_retrace_pipeline_eager(c):
-    """Auto's retrace pipeline made at the start, beside the band pass's
+    """Mixed's retrace pipeline made at the start, beside the band pass's
     and the first bands' float passes (on a second thread: the validation
     layer watches both; waited for at the first band that marks a pixel),
     gives the image of the one made when a band first marks a pixel, in
@@ -486,7 +487,8 @@ def case_retrace_pipeline_eager(c):
         env = {"TP2_EAGER_RETRACE": when}
         if band_bytes:
             env["TP2_BAND_BYTES"] = band_bytes
-        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"], env)
+        status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", "mixed", scene, out,
+                                     "48", "36"], env)
         c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
         retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
         c.require(retraced and int(retraced.group(1)) > 0, f"no pixel traced again: {err!r}")
@@ -507,7 +509,8 @@ def case_pipelines_before_buffers(c):
     for early, eager in (("0", "1e30"), ("1", "1e30"), ("1", "0")):
         out = os.path.join(c.tmp, f"o{len(images)}.ppm")
         env = {"TP2_EARLY_PIPELINES": early, "TP2_EAGER_RETRACE": eager}
-        status, _, err = run(c.tp2, ["--stats", "--quiet", scene, out, "48", "36"], env)
+        status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", "mixed", scene, out,
+                                     "48", "36"], env)
         c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
         retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
         c.require(retraced and int(retraced.group(1)) > 0, f"no pixel traced again: {err!r}")
@@ -542,13 +545,13 @@ def shifted_spheres(dx, dy):
 
 def case_bvh_matches_loop(c):
     """Spheres through the BVH give exactly the image of the plain loop,
-    by default and in double (whose box tests are float's, widened for the
+    under mixed and in double (whose box tests are float's, widened for the
     ray's rounding to float: shaders/intersect.glsl), and so they do with
     the scene moved 4e4 away from the origin, where that rounding is
     largest."""
     near = os.path.join(HERE, "render", "many-spheres.txt")
     far = scene_file(c.tmp, "far.txt", shifted_spheres(20000.0, 40000.0))
-    for scene, precision in ((near, "auto"), (near, "double"), (far, "double")):
+    for scene, precision in ((near, "mixed"), (near, "double"), (far, "double")):
         outs = []
         for name, n in (("bvh", "1"), ("loop", "100000")):
             out = os.path.join(c.tmp, name + ".pfm")
@@ -581,9 +584,9 @@ def ellipsoid_grid(n_side):
 def expect_in_bvh(c, scene, bounded, size, min_colors):
     """--stats says the scene's `bounded` primitives go into the BVH and 2
     unbounded ones are tested by every ray, and the image through the BVH
-    is the plain loop's (--bvh-min 100000), byte for byte, by default and
+    is the plain loop's (--bvh-min 100000), byte for byte, under mixed and
     in double."""
-    for precision in ("auto", "double"):
+    for precision in ("mixed", "double"):
         outs = []
         for name, n in (("bvh", "1"), ("loop", "100000")):
             out = os.path.join(c.tmp, name + ".pfm")
@@ -609,7 +612,7 @@ def case_ellipsoids_in_bvh(c):
 
 def case_triangle_edges_in_bvh(c):
     """The triangles' edge test marks the same pixels through the BVH
-    (whose boxes grow under auto) as in a plain loop: the triangles of
+    (whose boxes grow under mixed) as in a plain loop: the triangles of
     tests/stress/triangle-edges-on-pixel-rows, edges along rows of pixel
     centers (so at 400 x 300), one light in the plane of a triangle seen
     edge-on (a shadow ray in its plane meets nothing, in the loop too).
@@ -849,22 +852,24 @@ def translated_scene(dx, dy, dz):
 
 def case_translation_invariant(c):
     """A scene moved 4e3-8e3 away from the origin, the camera with it,
-    renders the same bytes as at the origin, under float, auto and double:
+    renders the same bytes as at the origin, under float, mixed, auto and
+    double:
     positions reach the GPU from the eye's float (scene_pack.c), so float
     rounds them as it would near the origin."""
     near, far = translated_scene(0, 0, 0), translated_scene(4096, -8192, 2048)
     with open(os.path.join(c.tmp, "tex.ppm"), "w") as f:
         f.write("P3 4 4 255\n" + " ".join(f"{(37 * i) % 256} {(91 * i) % 256} {(13 * i) % 256}"
                                            for i in range(16)) + "\n")
-    for options in (["--precision", "float"], [], ["--precision", "double"]):
+    for options in (["--precision", "float"], ["--precision", "mixed"], [],
+                    ["--precision", "double"]):
         a = c.image(near, (96, 72), options, name="near")
         b = c.image(far, (96, 72), options, name="far")
         c.expect(a == b, f"{options or 'auto'}: moved scene renders differently")
         c.expect(len({px for row in a for px in row}) > 50, f"{options}: a flat image")
 
 
-def case_auto_is_float_or_double(c):
-    """--precision auto: every pixel is the float image's or, where it was
+def case_mixed_is_float_or_double(c):
+    """--precision mixed: every pixel is the float image's or, where it was
     traced again, the double image's (same pruning), bit for bit; some are
     the double one's where float's differ (a far checkered sphere, where
     float flips cells), and no more differ from float than --stats says
@@ -874,17 +879,18 @@ def case_auto_is_float_or_double(c):
     images = {}
     for name, options, env in (("float", ["--precision", "float"], {}),
                                ("double", ["--precision", "double", "--bailout", BAILOUT], {}),
-                               ("auto", [], {}), ("bands", [], {"TP2_BAND_BYTES": "1"})):
+                               ("mixed", ["--precision", "mixed"], {}),
+                               ("bands", ["--precision", "mixed"], {"TP2_BAND_BYTES": "1"})):
         out = os.path.join(c.tmp, name + ".pfm")
         status, _, err = run(c.tp2, ["--stats", "--quiet", *options, scene, out, *size], env)
         c.require(status == 0, f"{name}: exit {status}: {err}")
         images[name] = read_pfm(out)[2]
-        if name == "auto":
+        if name == "mixed":
             precision, again = auto_stats(err)
-            c.expect(precision and precision.startswith("auto") and again is not None,
-                     f"auto --stats: {err!r}")
+            c.expect(precision and precision.startswith("mixed (") and again is not None,
+                     f"mixed --stats: {err!r}")
     same_float = same_double = other = 0
-    for rf, rd, ra in zip(images["float"], images["double"], images["auto"]):
+    for rf, rd, ra in zip(images["float"], images["double"], images["mixed"]):
         for f, d, a in zip(rf, rd, ra):
             if a == f:
                 same_float += 1
@@ -896,30 +902,59 @@ def case_auto_is_float_or_double(c):
     c.expect(same_double > 0, "no pixel took the double image's value")
     c.expect(again is not None and same_double <= again,
              f"{same_double} pixels from double, {again} traced again")
-    c.expect(images["bands"] == images["auto"], "8-row bands and one band differ")
+    c.expect(images["bands"] == images["mixed"], "8-row bands and one band differ")
+
+
+def case_auto_double_on_cpu(c):
+    """On a CPU device (lavapipe) --precision auto renders the whole image
+    in double from the double twin, with the default's pruning: the very
+    bytes of --precision double --bailout 1/255, on scenes with a BVH
+    (whose boxes are mixed's, grown for the edge test) and without, with
+    no retrace and --stats saying why; mixed differs from it (float's
+    pixels where no decision was in doubt)."""
+    grid = scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6))
+    for scene in (os.path.join(HERE, "stress", "quadric-far.txt"), grid,
+                  os.path.join(HERE, "..", "scenes", "mesh.txt")):
+        images = {}
+        for name, options in (("auto", []), ("mixed", ["--precision", "mixed"]),
+                              ("double", ["--precision", "double", "--bailout", BAILOUT])):
+            out = os.path.join(c.tmp, name + ".pfm")
+            status, _, err = run(c.tp2, ["--stats", "--quiet", *options, scene, out, "96", "72"])
+            c.require(status == 0 and "validation" not in err, f"{name}: exit {status}: {err!r}")
+            with open(out, "rb") as f:
+                images[name] = f.read()
+            if name == "auto":
+                precision, again = auto_stats(err)
+                c.expect(precision == "double (auto: on a CPU device double costs less than "
+                         "float and a retrace)" and again is None, f"auto --stats: {err!r}")
+        base = os.path.basename(scene)
+        c.expect(images["auto"] == images["double"], f"{base}: auto is not double's bytes")
+        c.expect(images["mixed"] != images["double"], f"{base}: mixed is double's bytes too")
 
 
 def expect_auto_is_float(c, env, why):
-    """Under env, auto renders float alone (the very bytes of --precision
-    float) and --stats says why."""
+    """Under env, auto and mixed render float alone (the very bytes of
+    --precision float) and --stats says why."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
     outs = {}
-    for name, options in (("auto", []), ("float", ["--precision", "float"])):
+    for name, options in (("auto", []), ("mixed", ["--precision", "mixed"]),
+                          ("float", ["--precision", "float"])):
         outs[name] = os.path.join(c.tmp, name + ".pfm")
         status, _, err = run(c.tp2, ["--stats", *options, scene, outs[name], "40", "30"], env)
         c.require(status == 0, f"{name}: exit {status}: {err}")
-        if name == "auto":
+        if name != "float":
             precision, again = auto_stats(err)
-            c.expect(precision == f"float (auto: {why})" and again is None,
-                     f"auto --stats: {err!r}")
-    with open(outs["auto"], "rb") as a, open(outs["float"], "rb") as f:
-        c.expect(a.read() == f.read(), f"auto ({why}) differs from float")
+            c.expect(precision == f"float ({name}: {why})" and again is None,
+                     f"{name} --stats: {err!r}")
+    for name in ("auto", "mixed"):
+        with open(outs[name], "rb") as a, open(outs["float"], "rb") as f:
+            c.expect(a.read() == f.read(), f"{name} ({why}) differs from float")
     return scene
 
 
 def case_auto_without_float64(c):
-    """On a device without shaderFloat64 (TP2_FLOAT64=0 hides it) auto is
-    float, and --stats says so; --precision double is refused, exit 1,
+    """On a device without shaderFloat64 (TP2_FLOAT64=0 hides it) auto and
+    mixed are float, and --stats says so; --precision double is refused, exit 1,
     nothing written."""
     env = {"TP2_FLOAT64": "0"}
     scene = expect_auto_is_float(c, env, "the device has no shaderFloat64")
@@ -931,8 +966,8 @@ def case_auto_without_float64(c):
 
 def case_auto_double_too_large(c):
     """Where the double scene would not fit the device (objects take twice
-    the texels in double: TP2_TEXEL_ELEMENTS between the two) auto renders
-    float alone, and --stats says so, whether its pipelines were made
+    the texels in double: TP2_TEXEL_ELEMENTS between the two) auto and
+    mixed render float alone, and --stats says so, whether its pipelines were made
     before the scene was packed or after."""
     status, out, err = run(c.tp2, ["--dump-scene", scene_file(c.tmp, "e.txt", effects_scene())])
     c.require(status == 0, f"--dump-scene: exit {status}: {err}")
@@ -958,12 +993,12 @@ def ppm_differences(a, b):
     return within1, bad8
 
 
-def case_auto_same_when_fused(c):
+def case_mixed_same_when_fused(c):
     """The same image on a device that rounds otherwise (issue 9 item 3):
     TP2_FUSED=1 makes the shaders round as a GPU compiler that fuses
     multiply-adds and dot products would (host/spirv_fused.h). On scenes
     built to make float fail, that flips float's decisions (pixels off by
-    more than 8 levels between the two devices), while auto's two images
+    more than 8 levels between the two devices), while mixed's two images
     stay within one level of each other almost everywhere, with none off
     by more than 8, and both meet README's accuracy bar against the exact
     image (within one level for >= 99.95% of values, no pixel off by more
@@ -981,7 +1016,8 @@ def case_auto_same_when_fused(c):
                 ("exact", ["--precision", "double", "--bailout", "0"], {}),
                 ("float", ["--precision", "float"], {}),
                 ("float fused", ["--precision", "float"], {"TP2_FUSED": "1"}),
-                ("auto", [], {}), ("auto fused", [], {"TP2_FUSED": "1"})):
+                ("mixed", ["--precision", "mixed"], {}),
+                ("mixed fused", ["--precision", "mixed"], {"TP2_FUSED": "1"})):
             out[label] = os.path.join(c.tmp, f"{name}-{label.replace(' ', '-')}.ppm")
             status, _, err = run(c.tp2, ["--quiet", *options, scene, out[label], *size], env)
             c.require(status == 0, f"{name} {label}: exit {status}: {err}")
@@ -989,10 +1025,10 @@ def case_auto_same_when_fused(c):
             c.expect((len(fused) > 0) == ("fused" in label) and all(int(n) > 0 for n in fused),
                      f"{name} {label}: {err!r}")
         float_flips += ppm_differences(out["float"], out["float fused"])[1]
-        within1, bad8 = ppm_differences(out["auto"], out["auto fused"])
+        within1, bad8 = ppm_differences(out["mixed"], out["mixed fused"])
         c.expect(within1 >= 0.9995 and bad8 == 0,
-                 f"{name}: auto against auto fused: within1 {within1:.6f}, {bad8} off by > 8")
-        for label in ("auto", "auto fused"):
+                 f"{name}: mixed against mixed fused: within1 {within1:.6f}, {bad8} off by > 8")
+        for label in ("mixed", "mixed fused"):
             within1, bad8 = ppm_differences(out[label], out["exact"])
             c.expect(within1 >= 0.9995 and bad8 == 0,
                      f"{name}: {label} against exact: within1 {within1:.6f}, {bad8} off by > 8")
@@ -1003,8 +1039,8 @@ def case_specialized_same_image(c):
     """Each pipeline's shader has the code its specialization constants
     rule out taken away before lavapipe sees it (host/spirv_specialize.h):
     the image is the same bytes as from the whole module
-    (TP2_SPECIALIZE=0), under auto (float pass and double retrace), float
-    and double, on every tier of kinds (spheres and planes; meshes; the
+    (TP2_SPECIALIZE=0), under mixed (float pass and double retrace), auto
+    (on lavapipe double, from the double twin), float and double, on every tier of kinds (spheres and planes; meshes; the
     curved kinds), with pigments, textures, fog, lens, arealights and
     samples, and with walks that go on across passes (one ray a pass);
     the validation layer sees every specialized module."""
@@ -1013,11 +1049,12 @@ def case_specialized_same_image(c):
     effects = scene_file(c.tmp, "effects.txt", effects_scene())
     tir = os.path.join(HERE, "stress", "tir-chain.txt")
     one_ray = {"TP2_PASS_RAYS": "1"}
-    runs = [(path("demo"), "auto", {}), (path("demo"), "float", {}),
-            (path("mesh"), "auto", {}), (path("mesh"), "double", {}),
-            (path("torus"), "auto", {}), (path("torus"), "auto", one_ray),
-            (path("texmap"), "float", {}), (path("checker"), "auto", {}),
-            (effects, "auto", {}), (effects, "double", one_ray), (tir, "auto", {})]
+    runs = [(path("demo"), "mixed", {}), (path("demo"), "float", {}),
+            (path("demo"), "auto", {}),
+            (path("mesh"), "mixed", {}), (path("mesh"), "double", {}),
+            (path("torus"), "mixed", {}), (path("torus"), "mixed", one_ray),
+            (path("texmap"), "float", {}), (path("checker"), "mixed", {}),
+            (effects, "mixed", {}), (effects, "double", one_ray), (tir, "mixed", {})]
     retraced = 0
     for scene, precision, env in runs:
         images = []
@@ -1038,13 +1075,14 @@ def case_specialized_same_image(c):
 
 def case_stats(c):
     """--stats names every phase and counts W x H x spp camera rays under
-    --precision float; under auto also the row after each band but the
+    --precision float and under auto (on lavapipe, double); under mixed
+    also the row after each band but the
     last (traced for its signatures) and the pixels traced again, which it
     reports, less the samples the float pass skips: after a pixel's first
     sample, one with an UNSURE decision is left to the double pass
     (signature.glsl, STOPPED)."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
-    for precision in ("float", "auto"):
+    for precision in ("float", "auto", "mixed"):
         status, _, err = run(c.tp2, ["--stats", "--spp", "3", "--precision", precision, scene,
                                      os.path.join(c.tmp, "o.ppm"), "10", "20"],
                              dict(os.environ, TP2_BAND_BYTES="1"))
@@ -1060,16 +1098,17 @@ def case_stats(c):
         retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
         bands = re.search(r"tp2: render .*\((\d+) bands? of 8 rows", err)
         c.expect(bands and int(bands.group(1)) == 3, f"20 rows in 8-row bands: {err!r}")
-        c.expect((retraced is not None) == (precision == "auto"), f"retrace line: {err!r}")
+        c.expect((retraced is not None) == (precision == "mixed"), f"retrace line: {err!r}")
         again = int(retraced.group(1)) if retraced else 0
-        after = 2 * 10 if precision == "auto" else 0
+        after = 2 * 10 if precision == "mixed" else 0
         most = (10 * 20 + after + again) * 3
-        if precision == "float":
-            c.expect(counts.get("camera") == most, f"float: camera rays {counts.get('camera')}")
+        if precision != "mixed":
+            c.expect(counts.get("camera") == most,
+                     f"{precision}: camera rays {counts.get('camera')}")
         else:  # this scene has UNSURE pixels: some samples are skipped
             least = (10 * 20 + after) + again * 3
             c.expect(least <= counts.get("camera", 0) < most,
-                     f"auto: camera rays {counts.get('camera')}, {again} traced again")
+                     f"mixed: camera rays {counts.get('camera')}, {again} traced again")
         c.expect(counts.get("shadow", 0) > 0 and counts.get("reflected", 0) > 0, f"{counts}")
         c.expect(counts.get("total") == sum(v for k, v in counts.items() if k != "total"),
                  f"{counts}")
