@@ -9,9 +9,11 @@ the chart is drawn, so --no-chart runs on the standard library alone.
 For each scene (default: scenes/*.txt in the repository, then
 tests/stress/far-small-sphere.txt, tests/stress/mirror-corridor.txt,
 tests/stress/inside-glass.txt and tests/render/effects.txt; --scenes to
-override) and each setting, auto (the default: float, pixels where float
-may have flipped a decision traced again in double, rays fainter than
-1/255 pruned), float (the same pruning, float alone), float-exact
+override) and each setting, auto (the default: on a CPU device such as
+lavapipe double throughout, elsewhere mixed; rays fainter than 1/255
+pruned), mixed (float, pixels where float may have flipped a decision
+traced again in double, the same pruning), float (the same pruning,
+float alone), float-exact
 (--bailout 0) or double (never pruned) x samples per
 pixel 1, 4, 16, 64 (--spp-list), tp2 renders the scene as
     tp2 --quiet SETTING-OPTIONS --spp N <scene> <out>.pfm W H
@@ -92,11 +94,13 @@ EXTRA_SCENES = ['tests/stress/far-small-sphere.txt',
                 'tests/stress/mirror-corridor.txt',
                 'tests/stress/inside-glass.txt',
                 'tests/render/effects.txt']
-# The settings compared, as tp2 options: the default (auto: float with a
-# double retrace; rays fainter than 1/255 pruned), float alone with the
-# same pruning and with none, and the double reference.
+# The settings compared, as tp2 options: the default (auto: double on a
+# CPU device, else mixed; rays fainter than 1/255 pruned), mixed (float
+# with a double retrace, the same pruning), float alone with the same
+# pruning and with none, and the double reference.
 SETTINGS = {
     'auto': ['--precision', 'auto'],
+    'mixed': ['--precision', 'mixed'],
     'float': ['--precision', 'float'],
     'float-exact': ['--precision', 'float', '--bailout', '0'],
     'double': ['--precision', 'double'],
@@ -197,7 +201,8 @@ def draw_chart(rows, path, title):
     for i, sc in enumerate(scenes):
         c = cmap(i % cmap.N)
         handles.append(Line2D([], [], color=c, linewidth=2, label=sc))
-        for prec, ls, mk in (('auto', '-.', 'D'), ('float', '-', 'o'),
+        for prec, ls, mk in (('auto', '-.', 'D'), ('mixed', (0, (5, 1)), 'v'),
+                             ('float', '-', 'o'),
                              ('float-exact', ':', '^'), ('double', '--', 's')):
             pts = sorted((r for r in rows if r['scene'] == sc and
                           r['precision'] == prec), key=lambda r: r['spp'])
@@ -226,7 +231,9 @@ def draw_chart(rows, path, title):
     ax.set_title(title, fontsize=10)
     ax.grid(True, which='both', linewidth=0.4, alpha=0.5)
     handles += [Line2D([], [], color='0.2', linestyle='-.', marker='D',
-                       markersize=4, label='auto (default: float + double retrace, bailout 1/255)'),
+                       markersize=4, label='auto (default; on a CPU double, bailout 1/255)'),
+                Line2D([], [], color='0.2', linestyle=(0, (5, 1)), marker='v',
+                       markersize=4, label='mixed (float + double retrace, bailout 1/255)'),
                 Line2D([], [], color='0.2', linestyle='-', marker='o',
                        markersize=4, label='float (bailout 1/255)'),
                 Line2D([], [], color='0.2', linestyle=':', marker='^',
