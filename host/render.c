@@ -109,7 +109,6 @@ struct renderer {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout pipeline_layout;
     struct tracer band, retrace; /* retrace in use where band.signatures */
-    bool band_twin; /* the band pass reads the double scene: auto on a CPU device */
     struct scene_features features;
     bool count_rays;
     double pipeline_time; /* seconds spent making pipelines */
@@ -135,13 +134,6 @@ struct renderer {
 static bool retracing(const struct renderer *r)
 {
     return r->band.signatures;
-}
-
-/* Whether a pass reads the double scene (the twin): the retrace pass,
- * or the band pass where auto renders a CPU device's image in double. */
-static bool uses_twin(const struct renderer *r)
-{
-    return retracing(r) || r->band_twin;
 }
 
 /* The stats buffer: rays counted in 64 bits as (low, high) pairs of uints,
@@ -176,8 +168,7 @@ static VkDeviceSize band_bytes_max(const struct vkc *vk)
 }
 
 /* The input bindings whose layout depends on the precision (layout.glsl's
- * rvec4s): there the passes in double read the double scene's buffers
- * (where it was packed beside the float one). */
+ * rvec4s): there the retrace pass reads the double scene's buffers. */
 static bool by_precision(int binding)
 {
     return binding == TP2_BINDING_FRAME || binding == TP2_BINDING_LIGHTS ||
@@ -214,8 +205,7 @@ static VkDeviceSize output_bytes(const struct renderer *r)
     return r->bytes ? sizeof(uint32_t) : TP2_PIXEL_BYTES;
 }
 
-/* The scene's buffers, filled (and the double scene's where a pass reads
- * it, in place of the float one's where the band pass does);
+/* The scene's buffers, filled (and the double scene's, when retracing);
  * the band buffer (band_rows rows of width), its host copy, the stats
  * buffer, the walks' buffers (on CPU devices; one element elsewhere, where
  * walks finish in their first pass), and when retracing the signatures
@@ -224,8 +214,8 @@ static int create_buffers(struct renderer *r, const struct packed_scene *p,
                           const struct packed_scene *twin, int width)
 {
     for (int i = 0; i < TP2_INPUT_BUFFERS; i++)
-        if ((!(r->band_twin && by_precision(i)) && upload(r, p, i, &r->buffers[i]) != 0) ||
-            (uses_twin(r) && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
+        if (upload(r, p, i, &r->buffers[i]) != 0 ||
+            (retracing(r) && by_precision(i) && upload(r, twin, i, &r->twin[i]) != 0))
             return -1;
     VkDeviceSize pixels = (VkDeviceSize)r->band_rows * width;
     VkDeviceSize walks = (VkDeviceSize)r->walk_capacity;
@@ -641,7 +631,7 @@ static int join_side(struct renderer *r, struct side_make *m)
 }
 
 /* Pass t's descriptor set: every binding the band pass's buffer, but where
- * a pass in double reads the double scene's (by_precision, uses_twin). */
+ * the retrace pass reads the double scene's (by_precision). */
 static int write_descriptors(struct renderer *r, struct tracer *t)
 {
     VkDescriptorSetAllocateInfo alloc = {
@@ -654,7 +644,7 @@ static int write_descriptors(struct renderer *r, struct tracer *t)
     VkDescriptorBufferInfo infos[TP2_BINDING_COUNT];
     VkWriteDescriptorSet writes[TP2_BINDING_COUNT];
     for (uint32_t i = 0; i < TP2_BINDING_COUNT; i++) {
-        bool twin = (t == &r->retrace || r->band_twin) && by_precision((int)i);
+        bool twin = t == &r->retrace && by_precision((int)i);
         VkBuffer buffer = twin ? r->twin[i].buffer : r->buffers[i].buffer;
         infos[i] = (VkDescriptorBufferInfo){
             .buffer = buffer,
@@ -1166,15 +1156,10 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
     return 0;
 }
 
-/* The passes this device runs and how: under --precision mixed a float
- * pass that records signatures and a retrace pass in double, where the
- * device has shaderFloat64 and the double scene fits it (twin_fits).
- * Auto is mixed but on a CPU device, where it renders the whole image in
- * double from the double scene: there a double lane costs about twice a
- * float one (half as many in a SIMD register), not the tens of times of
- * most GPUs, and float's bookkeeping for the retrace costs more than that
- * (README "Performance": on lavapipe the default took 0.93 of mixed's
- * time, and its image is the exact model's but for pruning). */
+/* The passes this device runs and how: under --precision mixed (and
+ * auto but on a CPU device: render_scene, auto_on_device) a float pass
+ * that records signatures and a retrace pass in double, where the device
+ * has shaderFloat64 and the double scene fits it (twin_fits). */
 static void plan_passes(struct renderer *r, const struct render_options *opt,
                         const struct scene_features *f, bool twin_fits)
 {
@@ -1183,11 +1168,8 @@ static void plan_passes(struct renderer *r, const struct render_options *opt,
     r->bytes = opt->bytes;
     r->loop_guard = needs_loop_guard(&r->vk);
     r->slabs = dispatch_slabs(&r->vk);
-    bool twin = opt->retrace && twin_fits && r->vk.float64;
-    r->band_twin = twin && opt->double_on_cpu &&
-                   r->vk.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    r->band = (struct tracer){.use_double = opt->use_double || r->band_twin,
-                              .signatures = twin && !r->band_twin};
+    r->band = (struct tracer){.use_double = opt->use_double,
+                              .signatures = opt->retrace && twin_fits && r->vk.float64};
     r->retrace = (struct tracer){.use_double = true, .pixel_list = true};
     r->band.pass_rays = pass_rays(r->loop_guard, &r->band.walking);
     r->retrace.pass_rays = pass_rays(r->loop_guard, &r->retrace.walking);
@@ -1303,31 +1285,45 @@ static bool pack_done(struct pack_job *job)
     return done;
 }
 
-/* What --stats says of the precision: the one used, or mixed's passes,
- * and what auto or mixed chose. */
-static void describe_precision(const struct renderer *r, const struct render_options *opt,
-                               bool twin_fits, struct render_stats *st)
+/* What --stats says of the precision: the one used, or mixed's passes;
+ * why auto or mixed (asked) chose another, where they did. */
+static void describe_precision(const struct renderer *r, const struct render_options *asked,
+                               const char *why, struct render_stats *st)
 {
-    const char *asked = opt->double_on_cpu ? "auto" : "mixed";
-    const char *what = r->band.use_double ? "double" : "float", *why = NULL;
+    const char *name = asked->double_on_cpu ? "auto" : "mixed";
+    const char *used = r->band.use_double ? "double" : "float";
     if (retracing(r))
-        what = "float, then pixels on decision boundaries again in double";
-    else if (r->band_twin)
-        why = "on a CPU device double costs less than float and a retrace";
-    else if (opt->retrace && !r->vk.float64)
-        why = "the device has no shaderFloat64";
-    else if (opt->retrace && !twin_fits)
-        why = "the double scene does not fit the device";
-    if (retracing(r))
-        snprintf(st->precision, sizeof st->precision, "%s (%s)", asked, what);
+        snprintf(st->precision, sizeof st->precision,
+                 "%s (float, then pixels on decision boundaries again in double)", name);
     else if (why)
-        snprintf(st->precision, sizeof st->precision, "%s (%s: %s)", what, asked, why);
+        snprintf(st->precision, sizeof st->precision, "%s (%s: %s)", used, name, why);
     else
-        snprintf(st->precision, sizeof st->precision, "%s", what);
+        snprintf(st->precision, sizeof st->precision, "%s", used);
     st->retracing = retracing(r);
 }
 
-int render_scene(const struct scene *s, const struct render_options *opt,
+/* Auto on a CPU device is double throughout, with the default's pruning
+ * (README "Performance", "--precision auto against float"): there a
+ * double lane costs about two float lanes (half as many fit a SIMD
+ * register), not the tens of times of most GPUs, and mixed's bookkeeping
+ * for its retrace costs about as much; the image is then the exact
+ * model's but for pruning. Decided once the device is made, before the
+ * scene is packed, so that only the double scene is packed (a million
+ * spheres: 2.9 s end to end when both were). Returns the options to
+ * render with. */
+static struct render_options auto_on_device(const struct render_options *asked,
+                                            const struct vkc *vk)
+{
+    struct render_options o = *asked;
+    if (asked->double_on_cpu && vk->float64 &&
+        vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+        o.use_double = true;
+        o.retrace = false;
+    }
+    return o;
+}
+
+int render_scene(const struct scene *s, const struct render_options *asked,
                  render_rows_fn on_rows, void *user, struct render_stats *stats)
 {
     struct renderer r = {0};
@@ -1335,12 +1331,25 @@ int render_scene(const struct scene *s, const struct render_options *opt,
     struct device_job device = {
         .vk = &r.vk,
         .opt = {
-            .device_index = opt->device_index,
-            .need_float64 = opt->use_double && !opt->double_where,
-            .want_float64 = opt->use_double || opt->retrace || fused_requested(),
-            .validate = opt->validate,
+            .device_index = asked->device_index,
+            .need_float64 = asked->use_double && !asked->double_where,
+            .want_float64 = asked->use_double || asked->retrace || fused_requested(),
+            .validate = asked->validate,
         },
     };
+    int rc = -1;
+    memset(stats, 0, sizeof *stats);
+    pthread_t device_thread, pack_thread;
+    /* Under auto the device is made first: which it is decides what is
+     * packed (auto_on_device). Else beside packing. */
+    bool device_threaded = !asked->double_on_cpu &&
+                           pthread_create(&device_thread, NULL, create_device, &device) == 0;
+    if (!device_threaded)
+        create_device(&device);
+    struct render_options o = device.rc == 0 ? auto_on_device(asked, &r.vk) : *asked;
+    const struct render_options *opt = &o;
+    bool cpu_double = o.use_double && !asked->use_double;
+    const char *why = NULL; /* why auto or mixed is not what they say (--stats) */
     struct pack_job packing = {
         .s = s,
         .opt = {
@@ -1358,12 +1367,6 @@ int render_scene(const struct scene *s, const struct render_options *opt,
         .lock = PTHREAD_MUTEX_INITIALIZER,
         .changed = PTHREAD_COND_INITIALIZER,
     };
-    int rc = -1;
-    memset(stats, 0, sizeof *stats);
-    pthread_t device_thread, pack_thread;
-    bool device_threaded = pthread_create(&device_thread, NULL, create_device, &device) == 0;
-    if (!device_threaded)
-        create_device(&device);
     double t1 = clock_seconds();
     bool pack_threaded = pthread_create(&pack_thread, NULL, pack, &packing) == 0;
     if (!pack_threaded)
@@ -1407,20 +1410,44 @@ int render_scene(const struct scene *s, const struct render_options *opt,
                 s->nobjects);
         goto done;
     }
+    if (made_rc == 0 && cpu_double && check_scene_fits(&r.vk, &packed, true, true) != 0) {
+        /* auto's double scene does not fit: float alone, packed now */
+        why = "the double scene does not fit the device";
+        cpu_double = o.use_double = false;
+        packing.opt.use_double = false;
+        packed_scene_free(&packed);
+        if (scene_pack(s, &packing.opt, &packed, NULL) != 0) {
+            fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the "
+                            "device\n", s->nobjects);
+            goto done;
+        }
+        if (early) { /* made for double: made again */
+            unmake_passes(&r);
+            plan_passes(&r, opt, &packed.features, false);
+            made_rc = make_passes(&r);
+        }
+    }
     if (made_rc != 0 || check_scene_fits(&r.vk, &packed, opt->use_double, false) != 0)
         goto done;
     bool twin_fits = opt->retrace && check_scene_fits(&r.vk, &twin, true, true) == 0;
+    if (cpu_double)
+        why = "a CPU device, where double costs no more than mixed";
+    else if (asked->retrace && !r.vk.float64)
+        why = "the device has no shaderFloat64";
+    else if (opt->retrace && !twin_fits)
+        why = "the double scene does not fit the device";
     double t_buffers = clock_seconds();
     if (!early) {
         plan_passes(&r, opt, &packed.features, twin_fits);
-    } else if (!twin_fits && uses_twin(&r)) { /* planned as if it fit: plan again */
+    } else if (!twin_fits && retracing(&r)) { /* planned as if it fit: plan again */
         unmake_passes(&r);
         plan_passes(&r, opt, &packed.features, false);
         if (make_passes(&r) != 0)
             goto done;
     }
     double t_planned = clock_seconds();
-    describe_precision(&r, opt, twin_fits, stats);
+    describe_precision(&r, asked, why, stats);
+    stats->device_first = !device_threaded;
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;

@@ -20,7 +20,7 @@ struct render_options {
                         * device has shaderFloat64 and the double scene
                         * fits it) */
     bool double_on_cpu; /* --precision auto: on a CPU device the whole
-                         * image in double instead (render.c, plan_passes) */
+                         * image in double instead (render.c, auto_on_device) */
     /* Set when use_double was chosen for the scene's range, not asked for:
      * where its largest length was written ("FILE:LINE:COL") and what it
      * is. Without shaderFloat64 the render is then refused naming them;
@@ -54,7 +54,8 @@ struct render_stats {
                            * where walks went on or lavapipe cut a pass */
     int pass_rays;        /* rays per walk per pass at the end */
     uint64_t rays[TP2_STAT_COUNT]; /* TP2_STAT_*; zero unless count_rays */
-    bool retracing;       /* auto's double retrace ran */
+    bool retracing;       /* mixed's double retrace ran */
+    bool device_first;    /* the device was made before packing (auto) */
     uint64_t retraced;    /* pixels traced again in double */
     double retrace;       /* seconds marking and retracing them (in render) */
     char precision[128];  /* the precision used, in words */

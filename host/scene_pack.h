@@ -50,7 +50,7 @@ struct packed_scene {
 /* Packs s: camera basis, lights, materials, texels, and the objects as GPU
  * primitives (a mesh makes one per triangle): the bounded ones in BVH
  * order, then the unbounded ones, and the BVH. twin, unless NULL, gets
- * the same scene packed for the double shader (--precision auto traces
+ * the same scene packed for the double shader (--precision mixed traces
  * some pixels again in double): every buffer but the BVH's and the
  * texels', which both share (out's). Returns 0, or -1 out of memory (out
  * and twin zeroed). */
