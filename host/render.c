@@ -1204,13 +1204,30 @@ static int make_pipelines(struct renderer *r)
 
 /* Vulkan instance and device creation on a thread of its own, so that it
  * runs while the scene is packed and its BVH built (on lavapipe 0.03-0.09
- * s, on a discrete GPU's driver 0.15 s or more). */
+ * s, on a discrete GPU's driver 0.15 s or more). What auto needs to
+ * choose (auto_on_device) is known before the logical device is made
+ * (vkc_options.chosen): packing waits for that alone. */
 struct device_job {
     struct vkc *vk;
     struct vkc_options opt;
     int rc;
     double seconds;
+    pthread_mutex_t lock;
+    pthread_cond_t changed;
+    bool chosen;       /* the facts below are known (or creation failed) */
+    bool cpu, float64; /* a CPU device; shaderFloat64 enabled */
 };
+
+static void device_chosen(const struct vkc *c, void *user)
+{
+    struct device_job *job = user;
+    pthread_mutex_lock(&job->lock);
+    job->chosen = true;
+    job->cpu = c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    job->float64 = c->float64;
+    pthread_cond_broadcast(&job->changed);
+    pthread_mutex_unlock(&job->lock);
+}
 
 static void *create_device(void *arg)
 {
@@ -1218,7 +1235,20 @@ static void *create_device(void *arg)
     double t0 = clock_seconds();
     job->rc = vkc_create(job->vk, &job->opt);
     job->seconds = clock_seconds() - t0;
+    pthread_mutex_lock(&job->lock); /* chosen, if it failed before */
+    job->chosen = true;
+    pthread_cond_broadcast(&job->changed);
+    pthread_mutex_unlock(&job->lock);
     return NULL;
+}
+
+/* Waits until the device job knows its device (or has failed). */
+static void wait_chosen(struct device_job *job)
+{
+    pthread_mutex_lock(&job->lock);
+    while (!job->chosen)
+        pthread_cond_wait(&job->changed, &job->lock);
+    pthread_mutex_unlock(&job->lock);
 }
 
 /* Packing on a thread of its own too, so that this thread makes the band
@@ -1307,16 +1337,15 @@ static void describe_precision(const struct renderer *r, const struct render_opt
  * double lane costs about two float lanes (half as many fit a SIMD
  * register), not the tens of times of most GPUs, and mixed's bookkeeping
  * for its retrace costs about as much; the image is then the exact
- * model's but for pruning. Decided once the device is made, before the
+ * model's but for pruning. Decided once the device is chosen, before the
  * scene is packed, so that only the double scene is packed (a million
  * spheres: 2.9 s end to end when both were). Returns the options to
  * render with. */
 static struct render_options auto_on_device(const struct render_options *asked,
-                                            const struct vkc *vk)
+                                            const struct device_job *device)
 {
     struct render_options o = *asked;
-    if (asked->double_on_cpu && vk->float64 &&
-        vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+    if (asked->double_on_cpu && device->float64 && device->cpu) {
         o.use_double = true;
         o.retrace = false;
     }
@@ -1335,18 +1364,25 @@ int render_scene(const struct scene *s, const struct render_options *asked,
             .need_float64 = asked->use_double && !asked->double_where,
             .want_float64 = asked->use_double || asked->retrace || fused_requested(),
             .validate = asked->validate,
+            .chosen = device_chosen,
+            .chosen_user = &device,
         },
+        .lock = PTHREAD_MUTEX_INITIALIZER,
+        .changed = PTHREAD_COND_INITIALIZER,
     };
     int rc = -1;
     memset(stats, 0, sizeof *stats);
     pthread_t device_thread, pack_thread;
-    /* Under auto the device is made first: which it is decides what is
-     * packed (auto_on_device). Else beside packing. */
-    bool device_threaded = !asked->double_on_cpu &&
-                           pthread_create(&device_thread, NULL, create_device, &device) == 0;
+    bool device_threaded = pthread_create(&device_thread, NULL, create_device, &device) == 0;
     if (!device_threaded)
         create_device(&device);
-    struct render_options o = device.rc == 0 ? auto_on_device(asked, &r.vk) : *asked;
+    /* Under auto which device it is decides what is packed; the logical
+     * device is made beside packing all the same. */
+    double t_choose = clock_seconds();
+    if (asked->double_on_cpu)
+        wait_chosen(&device);
+    stats->device_choice = asked->double_on_cpu ? clock_seconds() - t_choose : 0;
+    struct render_options o = auto_on_device(asked, &device);
     const struct render_options *opt = &o;
     bool cpu_double = o.use_double && !asked->use_double;
     const char *why = NULL; /* why auto or mixed is not what they say (--stats) */
@@ -1447,7 +1483,6 @@ int render_scene(const struct scene *s, const struct render_options *asked,
     }
     double t_planned = clock_seconds();
     describe_precision(&r, asked, why, stats);
-    stats->device_first = !device_threaded;
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;

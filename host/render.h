@@ -55,7 +55,7 @@ struct render_stats {
     int pass_rays;        /* rays per walk per pass at the end */
     uint64_t rays[TP2_STAT_COUNT]; /* TP2_STAT_*; zero unless count_rays */
     bool retracing;       /* mixed's double retrace ran */
-    bool device_first;    /* the device was made before packing (auto) */
+    double device_choice; /* seconds packing waited for the choice of device (auto) */
     uint64_t retraced;    /* pixels traced again in double */
     double retrace;       /* seconds marking and retracing them (in render) */
     char precision[128];  /* the precision used, in words */

@@ -405,6 +405,8 @@ static int create_device(struct vkc *c, const struct vkc_options *opt)
         return -1;
     }
     c->float64 = have.shaderFloat64 && (opt->need_float64 || opt->want_float64);
+    if (opt->chosen)
+        opt->chosen(c, opt->chosen_user);
     VkPhysicalDeviceFeatures want = {.shaderFloat64 = c->float64};
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {

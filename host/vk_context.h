@@ -6,11 +6,19 @@
 #include <stdio.h>
 #include <vulkan/vulkan.h>
 
+struct vkc;
+
 struct vkc_options {
     int device_index; /* index from vkc_list_devices(), or -1: the best */
     bool need_float64; /* fail without shaderFloat64 */
     bool want_float64; /* enable shaderFloat64 where the device has it */
     bool validate; /* enable VK_LAYER_KHRONOS_validation and count messages */
+    /* Called once the physical device is chosen and c->props and
+     * c->float64 are set, before the logical device is created (the
+     * longer part on a GPU): a caller may decide what to prepare beside
+     * the rest. NULL: none. */
+    void (*chosen)(const struct vkc *c, void *user);
+    void *chosen_user;
 };
 
 struct vkc {

@@ -908,8 +908,8 @@ def case_mixed_is_float_or_double(c):
 def case_auto_double_on_cpu(c):
     """On a CPU device (lavapipe) --precision auto renders the whole image
     in double from the double twin, with the default's pruning: the very
-    bytes of --precision double --bailout 1/255 (the device is made first,
-    then the double scene alone packed: render.c, auto_on_device), on
+    bytes of --precision double --bailout 1/255 (the device is chosen
+    first, then the double scene alone packed: render.c, auto_on_device), on
     scenes with a BVH and without, with no retrace and --stats saying
     why; mixed differs from it (float's pixels where no decision was in
     doubt)."""
@@ -928,6 +928,9 @@ def case_auto_double_on_cpu(c):
                 precision, again = auto_stats(err)
                 c.expect(precision == "double (auto: a CPU device, where double costs no more "
                          "than mixed)" and again is None, f"auto --stats: {err!r}")
+            # Only auto waits for the choice of device before packing.
+            c.expect(("upload once the device was chosen" in err) == (name == "auto"),
+                     f"{name} --stats device line: {err!r}")
         base = os.path.basename(scene)
         c.expect(images["auto"] == images["double"], f"{base}: auto is not double's bytes")
         c.expect(images["mixed"] != images["double"], f"{base}: mixed is double's bytes too")
