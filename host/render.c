@@ -1352,6 +1352,13 @@ static struct render_options auto_on_device(const struct render_options *asked,
     return o;
 }
 
+/* Says that packing (or packing again in float) ran out of memory. */
+static void packing_failed(const struct scene *s)
+{
+    fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the device\n",
+            s->nobjects);
+}
+
 int render_scene(const struct scene *s, const struct render_options *asked,
                  render_rows_fn on_rows, void *user, struct render_stats *stats)
 {
@@ -1442,8 +1449,7 @@ int render_scene(const struct scene *s, const struct render_options *asked,
                 opt->double_where, opt->double_what);
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
     if (packing.rc != 0) {
-        fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the device\n",
-                s->nobjects);
+        packing_failed(s);
         goto done;
     }
     if (made_rc == 0 && cpu_double && check_scene_fits(&r.vk, &packed, true, true) != 0) {
@@ -1453,8 +1459,7 @@ int render_scene(const struct scene *s, const struct render_options *asked,
         packing.opt.use_double = false;
         packed_scene_free(&packed);
         if (scene_pack(s, &packing.opt, &packed, NULL) != 0) {
-            fprintf(stderr, "tp2: out of memory packing the scene's %zu objects for the "
-                            "device\n", s->nobjects);
+            packing_failed(s);
             goto done;
         }
         if (early) { /* made for double: made again */
