@@ -14,9 +14,8 @@ struct vkc_options {
     bool want_float64; /* enable shaderFloat64 where the device has it */
     bool validate; /* enable VK_LAYER_KHRONOS_validation and count messages */
     /* Called once the physical device is chosen and c->props and
-     * c->float64 are set, before the logical device is created (the
-     * longer part on a GPU): a caller may decide what to prepare beside
-     * the rest. NULL: none. */
+     * c->float64 are set, before the logical device is created: a caller
+     * may decide what to prepare beside the rest. NULL: none. */
     void (*chosen)(const struct vkc *c, void *user);
     void *chosen_user;
 };
