@@ -93,13 +93,12 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: device     %s\n", st->device_name);
     fprintf(stderr, "tp2: precision  %s\n", st->precision);
     fprintf(stderr, "tp2: parse      %8.3f s\n", parse);
+    char waited[80] = ""; /* auto: packing waited for the choice of device */
     if (st->device_choice > 0)
-        fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh and "
-                        "upload once the device was chosen, %.3f s in: auto's choice needs it)\n",
-                st->device, st->device_choice);
-    else
-        fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh and "
-                        "upload)\n", st->device);
+        snprintf(waited, sizeof waited, " once the device was chosen, %.3f s in: auto's "
+                 "choice needs it", st->device_choice);
+    fprintf(stderr, "tp2: device     %8.3f s (instance and device creation, beside bvh and "
+                    "upload%s)\n", st->device, waited);
     fprintf(stderr, "tp2: bvh        %8.3f s (%s %llu bounded primitive%s%s; %llu unbounded, "
                     "tested by every ray)\n", st->bvh,
             st->has_bvh ? "building the BVH over" : "no BVH:", (unsigned long long)st->bounded,

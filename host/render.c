@@ -1219,15 +1219,23 @@ struct device_job {
     bool cpu, float64; /* a CPU device; shaderFloat64 enabled */
 };
 
-static void device_chosen(const struct vkc *c, void *user)
+/* Tells wait_chosen the device is known (c: its facts), or that creation
+ * ended (c NULL: the facts stay as they are, false if it failed first). */
+static void announce_chosen(struct device_job *job, const struct vkc *c)
 {
-    struct device_job *job = user;
     pthread_mutex_lock(&job->lock);
+    if (c) {
+        job->cpu = c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        job->float64 = c->float64;
+    }
     job->chosen = true;
-    job->cpu = c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    job->float64 = c->float64;
     pthread_cond_broadcast(&job->changed);
     pthread_mutex_unlock(&job->lock);
+}
+
+static void device_chosen(const struct vkc *c, void *user)
+{
+    announce_chosen(user, c);
 }
 
 static void *create_device(void *arg)
@@ -1236,10 +1244,7 @@ static void *create_device(void *arg)
     double t0 = clock_seconds();
     job->rc = vkc_create(job->vk, &job->opt);
     job->seconds = clock_seconds() - t0;
-    pthread_mutex_lock(&job->lock); /* chosen, if it failed before */
-    job->chosen = true;
-    pthread_cond_broadcast(&job->changed);
-    pthread_mutex_unlock(&job->lock);
+    announce_chosen(job, NULL);
     return NULL;
 }
 
