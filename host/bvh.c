@@ -624,29 +624,15 @@ int bvh_gpu_nodes(const struct bvh *b, struct bvh_gpu_node *out)
     return 0;
 }
 
-/* Adds lo_by to every node's lower bounds and hi_by to its upper ones,
- * rounded outward. */
-static void shift_bounds(struct bvh *b, const double lo_by[3], const double hi_by[3])
+void bvh_move(struct bvh *b, const double origin[3])
 {
     for (size_t i = 0; i < b->node_count; i++) {
         struct bvh_node *n = &b->nodes[i];
         for (int a = 0; a < 3; a++) {
-            n->lo[a] = float_below((double)n->lo[a] + lo_by[a]);
-            n->hi[a] = float_above((double)n->hi[a] + hi_by[a]);
+            n->lo[a] = float_below((double)n->lo[a] - origin[a]);
+            n->hi[a] = float_above((double)n->hi[a] - origin[a]);
         }
     }
-}
-
-void bvh_move(struct bvh *b, const double origin[3])
-{
-    const double by[3] = {-origin[0], -origin[1], -origin[2]};
-    shift_bounds(b, by, by);
-}
-
-void bvh_grow(struct bvh *b, double margin)
-{
-    const double lo_by[3] = {-margin, -margin, -margin}, hi_by[3] = {margin, margin, margin};
-    shift_bounds(b, lo_by, hi_by);
 }
 
 void bvh_free(struct bvh *b)

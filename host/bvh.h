@@ -94,9 +94,6 @@ int bvh_build_from(bvh_box_fn *box_at, const void *source, size_t n, struct bvh 
  * hold the shapes moved the same way. */
 void bvh_move(struct bvh *b, const double origin[3]);
 
-/* Grows every node's box by margin on each side, rounded outward. */
-void bvh_grow(struct bvh *b, double margin);
-
 /* Frees the arrays and zeroes b; safe on a zeroed one. */
 void bvh_free(struct bvh *b);
 

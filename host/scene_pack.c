@@ -618,9 +618,6 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     if (rc == 0) {
         place_origin(s, &lay);
         lay.scale = layout_scale(s, &lay);
-        /* --precision auto's float pass: shapes.glsl's edge test */
-        if (twin && !opt->use_double)
-            bvh_grow(&lay.bvh, 4 * TP2_EDGE_REACH * lay.scale);
     }
     free(bounded);
     if (rc == 0)

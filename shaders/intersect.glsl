@@ -41,25 +41,40 @@ const Start NOWHERE = Start(-1, false);
 // of itself, which moves each slab by that times 1/d (slack, doubled for
 // safety), and 1/d by 2^-24 of itself (entry narrowed by 2^-21 too); so
 // no box the double ray meets is missed. The float build's slack is 0
-// and its entry is not narrowed: its tests are as they were. (Under
-// --precision auto the boxes themselves are larger: TP2_EDGE_REACH.)
+// and its entry is not narrowed: its tests are as they were. Under
+// SIGNATURES (mixed's float pass) each box is tested grown by 4 times
+// TP2_EDGE_REACH of the scene's scale, so that an edge passed within the
+// edge test's reach is tested through the BVH as by a plain loop; the
+// retrace, in double, tests the boxes as they are, as the double build
+// does. (Grown in the tree both read, they made the retrace of a scene
+// seen from far away, where the growth dwarfs the objects, test every
+// object for every ray: 47 times the double build's render.)
 const float BOX_WIDEN = 4.76837158203125e-7; // 2^-21: a slab's two roundings, with room
 const float ORIGIN_ROUNDING = 1.1920928955078125e-7; // 2^-23: twice float's 2^-24
 
+// The origin is kept per slab (lo, hi, lo, hi as a node's vec4s), so
+// that the growth costs nothing per node: a box grown by g is the box
+// seen from an origin moved by g toward each slab.
 struct BoxRay {
-    vec3 o, inv_d, slack;
+    vec4 ox, oy, oz;
+    vec3 inv_d, slack;
     float narrow;
 };
 
 BoxRay box_ray(rvec3 o, rvec3 inv_d)
 {
     vec3 of = vec3(o), inv = vec3(inv_d);
+    vec4 grow = 4.0 * most_reach() * vec4(1.0, -1.0, 1.0, -1.0);
 #ifdef TP2_DOUBLE
-    return BoxRay(of, inv, min(abs(of) * ORIGIN_ROUNDING * abs(inv), vec3(1e37)),
-                  1.0 - BOX_WIDEN);
+    vec3 slack = min(abs(of) * ORIGIN_ROUNDING * abs(inv), vec3(1e37));
+    float narrow = 1.0 - BOX_WIDEN;
 #else
-    return BoxRay(of, inv, vec3(0.0), 1.0);
+    vec3 slack = vec3(0.0);
+    float narrow = 1.0;
 #endif
+    if (!SIGNATURES)
+        return BoxRay(vec4(of.x), vec4(of.y), vec4(of.z), inv, slack, narrow);
+    return BoxRay(of.x + grow, of.y + grow, of.z + grow, inv, slack, narrow);
 }
 
 // Where the ray enters each of a node's two children's boxes (x, y),
@@ -67,9 +82,9 @@ BoxRay box_ray(rvec3 o, rvec3 inv_d)
 // holds (left lo, left hi, right lo, right hi).
 rvec2 children_entry(BvhNode n, BoxRay r, float tmax)
 {
-    vec4 tx = (n.x - r.o.x) * r.inv_d.x;
-    vec4 ty = (n.y - r.o.y) * r.inv_d.y;
-    vec4 tz = (n.z - r.o.z) * r.inv_d.z;
+    vec4 tx = (n.x - r.ox) * r.inv_d.x;
+    vec4 ty = (n.y - r.oy) * r.inv_d.y;
+    vec4 tz = (n.z - r.oz) * r.inv_d.z;
     vec2 enter = max(max(min(tx.xz, tx.yw) - r.slack.x, min(ty.xz, ty.yw) - r.slack.y),
                      max(min(tz.xz, tz.yw) - r.slack.z, vec2(0.0))) *
                  r.narrow;
@@ -143,7 +158,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
                 h.edge = min(h.edge, edge);
             // An exact tie goes to the first object in the layout, as
             // in a plain loop, whatever order the BVH tests them in (it
-            // differs where --precision auto's float pass grows boxes).
+            // differs where mixed's float pass grows boxes).
             if ((t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed)) {
                 h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
                 if (any_hit)

@@ -568,6 +568,42 @@ def case_bvh_matches_loop(c):
         c.expect(lit > 1000, f"{scene} {precision}: only {lit} pixels differ from the corner")
 
 
+def far_glass_grid():
+    """100 small glass spheres seen from 1e6 away under a 0.0003 degree
+    field of view: float's rounding there is a share of every pixel, so
+    mixed traces every pixel again in double."""
+    spheres = [f"0 0 sphere {x * 0.5 - 2.25:.3f} {y * 0.5 - 2.25:.3f} -8 0.2"
+               for x in range(10) for y in range(10)]
+    return ("0 0 1e6\n0 0 -8\n0 1 0\n0.0003\n3\n0 0 0 0.3 0.3 0.3 0 0 0\n"
+            "3 4 2 1 1 1 1 0 0\n-3 2 5 0.5 0.5 0.5 1 0 0\n"
+            "1\nchecker 1 0.5 0  0 0.25 1  0.3\n1\n0.2 0.7 0.3 20 0.3 0.5 1.5\n" +
+            f"{len(spheres) + 1}\n" + "\n".join(spheres) + "\n0 0 plane 0 0 1 9\n")
+
+
+def case_retrace_tests_boxes_as_built(c):
+    """Mixed's float pass tests the BVH's boxes grown for its edge test
+    (TP2_EDGE_REACH of the scene's scale); its retrace in double tests
+    them as built, as the double build does. Seen from 1e6 away the growth
+    is about 1000 units around spheres of 0.2: grown in the tree itself
+    (before), every box held every sphere, the retrace tested each one for
+    every ray and lavapipe cut its walks (15 passes where 2 do). Every
+    pixel is traced again, and the image is double's with the same
+    pruning, byte for byte."""
+    scene = scene_file(c.tmp, "far.txt", far_glass_grid())
+    out, exact = (os.path.join(c.tmp, name) for name in ("mixed.ppm", "double.ppm"))
+    status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", "mixed", scene, out,
+                                 "40", "30"])
+    c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+    c.require("(building the BVH over 100 bounded primitives" in err, f"no BVH: {err!r}")
+    c.expect("(1200 pixels, 100.00%, again in double" in err, f"not all traced again: {err!r}")
+    passes = re.search(r"tp2: passes +(\d+)", err)
+    c.expect(passes and int(passes.group(1)) == 2,
+             f"float pass and retrace not one pass each: {err!r}")
+    render(c.tp2, scene, exact, (40, 30), ["--precision", "double",
+                                           "--bailout", "0.00392156862745098"])
+    c.expect(read_ppm(out)[2] == read_ppm(exact)[2], "mixed's image is not double's")
+
+
 def ellipsoid_grid(n_side):
     """n_side^2 tilted ellipsoids written as quadrics (x^2 + 4 y^2 + 2 z^2
     + x z about each center, some glass), over a plane and under an

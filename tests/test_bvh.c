@@ -899,38 +899,6 @@ static void check_moved(void)
     free(far);
 }
 
-/* A tree grown by a margin (bvh_grow, --precision auto's edge test) holds
- * every sphere grown by it, each node's box by at least the margin on
- * each side, still rounded outward. */
-static void check_grown(void)
-{
-    const size_t n = 1000;
-    const double margin = 0.0078125 * 3.1; /* not a float's step of the boxes */
-    double (*spheres)[4] = make_set(SET_UNIFORM, n, 78);
-    if (!spheres) {
-        fputs("test_bvh: out of memory\n", stderr);
-        exit(2);
-    }
-    struct bvh b, before;
-    CHECK(sphere_bvh_build((const double (*)[4])spheres, n, &b) == 0);
-    CHECK(sphere_bvh_build((const double (*)[4])spheres, n, &before) == 0);
-    bvh_grow(&b, margin);
-    bool grown = b.node_count == before.node_count;
-    for (size_t i = 0; grown && i < b.node_count; i++)
-        for (int a = 0; a < 3; a++)
-            grown = grown && (double)b.nodes[i].lo[a] <= (double)before.nodes[i].lo[a] - margin &&
-                    (double)b.nodes[i].hi[a] >= (double)before.nodes[i].hi[a] + margin &&
-                    b.nodes[i].first == before.nodes[i].first &&
-                    b.nodes[i].count == before.nodes[i].count;
-    expect(grown, "grown: every box by the margin, the tree the same");
-    for (size_t i = 0; i < n; i++)
-        spheres[i][3] += margin;
-    check_structure("grown", (const double (*)[4])spheres, n, &b);
-    bvh_free(&b);
-    bvh_free(&before);
-    free(spheres);
-}
-
 int main(void)
 {
     static const struct set_case cases[] = {
@@ -951,7 +919,6 @@ int main(void)
     check_edges();
     check_build_from();
     check_moved();
-    check_grown();
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         run_case(&cases[i], 1000 + i);
     check_quality();
