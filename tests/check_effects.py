@@ -604,6 +604,31 @@ def case_retrace_tests_boxes_as_built(c):
     c.expect(read_ppm(out)[2] == read_ppm(exact)[2], "mixed's image is not double's")
 
 
+def case_grown_boxes_mark_as_loop(c):
+    """Mixed's float pass tests the BVH's boxes grown by its edge test's
+    reach (intersect.glsl, box_ray), so that a ray passing an edge just
+    outside a box is tested, and marked, as in a plain loop: on stress
+    scenes with edges along rows of pixel centers, forced through the BVH
+    (--bvh-min 1), the same pixels are traced again (--stats' count) and
+    the image is the loop's, byte for byte. (Without the growth,
+    faces-crossing-on-row marked 2662 pixels where the loop marks 2845.)"""
+    for name in ("faces-crossing-on-row", "edges-through-glass", "edges-on-pixel-rows"):
+        scene = os.path.join(HERE, "stress", name + ".txt")
+        counts, images = [], []
+        for how, n in (("bvh", "1"), ("loop", "100000")):
+            out = os.path.join(c.tmp, f"{name}-{how}.pfm")
+            status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", "mixed",
+                                         "--bvh-min", n, scene, out, "400", "300"])
+            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+            retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
+            c.require(retraced is not None, f"{name} {how}: no retrace line: {err!r}")
+            counts.append(int(retraced.group(1)))
+            images.append(read_pfm(out)[2])
+        c.expect(counts[0] == counts[1] and counts[0] > 0,
+                 f"{name}: traced again through the BVH {counts[0]}, in a loop {counts[1]}")
+        c.expect(images[0] == images[1], f"{name}: the BVH's image differs from the loop's")
+
+
 def ellipsoid_grid(n_side):
     """n_side^2 tilted ellipsoids written as quadrics (x^2 + 4 y^2 + 2 z^2
     + x z about each center, some glass), over a plane and under an
