@@ -64,7 +64,6 @@ struct BoxRay {
 BoxRay box_ray(rvec3 o, rvec3 inv_d)
 {
     vec3 of = vec3(o), inv = vec3(inv_d);
-    vec4 grow = 4.0 * most_reach() * vec4(1.0, -1.0, 1.0, -1.0);
 #ifdef TP2_DOUBLE
     vec3 slack = min(abs(of) * ORIGIN_ROUNDING * abs(inv), vec3(1e37));
     float narrow = 1.0 - BOX_WIDEN;
@@ -74,6 +73,7 @@ BoxRay box_ray(rvec3 o, rvec3 inv_d)
 #endif
     if (!SIGNATURES)
         return BoxRay(vec4(of.x), vec4(of.y), vec4(of.z), inv, slack, narrow);
+    vec4 grow = 4.0 * most_reach() * vec4(1.0, -1.0, 1.0, -1.0);
     return BoxRay(of.x + grow, of.y + grow, of.z + grow, inv, slack, narrow);
 }
 

@@ -149,7 +149,7 @@
 /* How far, at most, across a ray the float pass's edge test reaches
  * (shaders/shapes.glsl, edge_graze), in units of the scene's scale
  * (Frame.eye.w); that pass tests the BVH's boxes grown by 4 times that
- * (intersect.glsl, children_entry), so that an edge passed that near is
+ * (intersect.glsl, box_ray), so that an edge passed that near is
  * tested through the BVH as by a plain loop. */
 #define TP2_EDGE_REACH (1.0 / 4096.0)
 

@@ -614,19 +614,16 @@ def case_grown_boxes_mark_as_loop(c):
     faces-crossing-on-row marked 2662 pixels where the loop marks 2845.)"""
     for name in ("faces-crossing-on-row", "edges-through-glass", "edges-on-pixel-rows"):
         scene = os.path.join(HERE, "stress", name + ".txt")
-        counts, images = [], []
-        for how, n in (("bvh", "1"), ("loop", "100000")):
-            out = os.path.join(c.tmp, f"{name}-{how}.pfm")
-            status, _, err = run(c.tp2, ["--stats", "--quiet", "--precision", "mixed",
-                                         "--bvh-min", n, scene, out, "400", "300"])
-            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        renders = bvh_and_loop(c, scene, (400, 300), "mixed")
+        counts = []
+        for how, err, _ in renders:
             retraced = re.search(r"tp2: retrace +[0-9.]+ s \((\d+) pixels", err)
             c.require(retraced is not None, f"{name} {how}: no retrace line: {err!r}")
             counts.append(int(retraced.group(1)))
-            images.append(read_pfm(out)[2])
         c.expect(counts[0] == counts[1] and counts[0] > 0,
                  f"{name}: traced again through the BVH {counts[0]}, in a loop {counts[1]}")
-        c.expect(images[0] == images[1], f"{name}: the BVH's image differs from the loop's")
+        c.expect(renders[0][2] == renders[1][2],
+                 f"{name}: the BVH's image differs from the loop's")
 
 
 def ellipsoid_grid(n_side):
@@ -648,25 +645,34 @@ def ellipsoid_grid(n_side):
             f"{len(rows)}\n" + "\n".join(rows) + "\n")
 
 
+def bvh_and_loop(c, scene, size, precision):
+    """scene rendered with --stats under `precision` through the BVH
+    (--bvh-min 1) and in a plain loop (--bvh-min 100000): a list of
+    (name, stderr, pixels) for the two."""
+    renders = []
+    for name, n in (("bvh", "1"), ("loop", "100000")):
+        out = os.path.join(c.tmp, name + ".pfm")
+        status, _, err = run(c.tp2, ["--stats", "--quiet", "--bvh-min", n, "--precision",
+                                     precision, scene, out, str(size[0]), str(size[1])])
+        c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        renders.append((name, err, read_pfm(out)[2]))
+    return renders
+
+
 def expect_in_bvh(c, scene, bounded, size, min_colors):
     """--stats says the scene's `bounded` primitives go into the BVH and 2
     unbounded ones are tested by every ray, and the image through the BVH
     is the plain loop's (--bvh-min 100000), byte for byte, under mixed and
     in double."""
     for precision in ("mixed", "double"):
-        outs = []
-        for name, n in (("bvh", "1"), ("loop", "100000")):
-            out = os.path.join(c.tmp, name + ".pfm")
-            status, _, err = run(c.tp2, ["--stats", "--bvh-min", n, "--precision", precision,
-                                         scene, out, str(size[0]), str(size[1])])
-            c.require(status == 0 and "validation" not in err, f"exit {status}: {err!r}")
+        renders = bvh_and_loop(c, scene, size, precision)
+        for name, err, _ in renders:
             said = (f"building the BVH over {bounded} bounded primitives" if name == "bvh" else
                     f"no BVH: {bounded} bounded primitives, in a plain loop")
             c.expect(f"({said}; 2 unbounded, tested by every ray)" in err,
                      f"{precision} {name}: {err!r}")
-            outs.append(read_pfm(out)[2])
-        c.expect(outs[0] == outs[1], f"{precision}: BVH and loop images differ")
-        colors = {px for row in outs[0] for px in row}
+        c.expect(renders[0][2] == renders[1][2], f"{precision}: BVH and loop images differ")
+        colors = {px for row in renders[0][2] for px in row}
         c.expect(len(colors) > min_colors, f"{precision}: only {len(colors)} colors")
 
 
