@@ -111,10 +111,12 @@ rvec3 safe_inverse(rvec3 d)
 // Under SIGNATURES, doubt (x: how far the ray's origin may be off, y: its
 // direction, radians; shapes.glsl, edge_graze) says which edges it passes
 // within its error of: Hit.edge is the nearest such, if nearer than the
-// hit (ahead of any object hit, so the same whatever the order objects
-// are tested in). An any-hit search does not stop at an occluder whose
-// edge it passes so near: only a sure one settles the shadow (and clears
-// Hit.edge), else Hit.edge says that rounding may have decided it.
+// hit or at most TP2_EDGE_REACH of the scene's scale beyond it (kept
+// whatever the order objects are tested in: an edge is kept against the
+// nearest hit so far; trace_step counts one beyond the hit within the
+// hit distance's doubt). An any-hit search does not stop at an occluder
+// whose edge it passes so near: only a sure one settles the shadow (and
+// clears Hit.edge), else Hit.edge says that rounding may have decided it.
 //
 // One loop tests one object per step, and between the ranges of objects
 // to test, walks the BVH to its next leaf (nearest first), the unbounded
@@ -154,7 +156,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
             real t = hit_object(i, o, d, i == start.object, start.inward, doubt, part,
                                 h.graze, edge);
             bool grazed = SIGNATURES && edge < NO_EDGE;
-            if (grazed && edge <= h.t)
+            if (grazed && edge <= float(h.t) + most_reach())
                 h.edge = min(h.edge, edge);
             // An exact tie goes to the first object in the layout, as
             // in a plain loop, whatever order the BVH tests them in (it

@@ -81,8 +81,8 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     Hit h = trace_scene(ray.origin, ray.dir, ray.start, NO_HIT, false, -1,
                         edge_doubt(doubt, stake));
     decided(sig, uint(h.object));
-    edges_seen(sig, h.edge, float(h.t));
     if (h.object < 0) { // boundaries beyond move with the direction (signature.glsl)
+        edges_seen(sig, h.edge, float(h.t), 0.0);
         seen(sig, far_pixels(doubt), own_far_pixels(doubt), stake);
         color += weight * (HAS_FOG ? frame.fog.rgb : gray);
         return 0;
@@ -111,6 +111,10 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
     decided(sig, uint(h.part));
     if (at_stake(stake) && cosine < hd.angle) // entering or leaving
         sig |= UNSURE;
+    // An edge as far as the hit, within its distance's doubt, may be
+    // nearer in double; counted up to TP2_EDGE_REACH of the scene's scale,
+    // which the BVH's grown boxes cover (intersect.glsl, box_ray).
+    edges_seen(sig, h.edge, float(h.t), min(distance_doubt(hd, float(h.t), sizes), most_reach()));
     float margin = float(h.next - h.t);
     if (at_stake(stake) && nearer_unsure(margin, hd, float(h.t), sizes) &&
         (margin > 0.0 || !coincident_faces(h.object, h.next_object, h.next_part, n)))
@@ -158,7 +162,7 @@ int trace_step(Ray ray, vec4 doubt, vec2 area_shift, inout vec3 color, inout flo
             decided(sig, uint(shadowed));
             shadow_seen(sig, ray.depth, j, shadowed);
             graze = min(graze, shadow.graze);
-            edges_seen(sig, shadow.edge, float(dist));
+            edges_seen(sig, shadow.edge, float(dist), 0.0);
         } else {
             penumbra = max(penumbra, area_share(lit, shadowed));
         }

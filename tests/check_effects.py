@@ -612,7 +612,8 @@ def case_grown_boxes_mark_as_loop(c):
     (--bvh-min 1), the same pixels are traced again (--stats' count) and
     the image is the loop's, byte for byte. (Without the growth,
     faces-crossing-on-row marked 2662 pixels where the loop marks 2845.)"""
-    for name in ("faces-crossing-on-row", "edges-through-glass", "edges-on-pixel-rows"):
+    for name in ("faces-crossing-on-row", "edges-through-glass", "edges-on-pixel-rows",
+                 "triangle-corners-on-floor"):
         scene = os.path.join(HERE, "stress", name + ".txt")
         renders = bvh_and_loop(c, scene, (400, 300), "mixed")
         counts = []
@@ -624,6 +625,33 @@ def case_grown_boxes_mark_as_loop(c):
                  f"{name}: traced again through the BVH {counts[0]}, in a loop {counts[1]}")
         c.expect(renders[0][2] == renders[1][2],
                  f"{name}: the BVH's image differs from the loop's")
+
+
+def case_corners_on_the_hit_floor(c):
+    """Triangles' corners resting on a floor, each on a pixel center's ray
+    (tests/stress/triangle-corners-on-floor.txt): double finds the
+    triangle a hair nearer than the floor, float may put its corner a
+    hair behind. Mixed's edge test counts an edge as far as the hit,
+    within the hit distance's doubt (signature.glsl, edges_seen), so no
+    pixel of its image is off by more than 8 levels from double's, where
+    float alone has hundreds (and mixed had 24 when it counted only
+    edges nearer than the hit)."""
+    scene = os.path.join(HERE, "stress", "triangle-corners-on-floor.txt")
+    images = {}
+    for precision in ("mixed", "double", "float"):
+        out = os.path.join(c.tmp, precision + ".ppm")
+        render(c.tp2, scene, out, (400, 300), ["--quiet", "--precision", precision])
+        images[precision] = read_ppm(out)[2]
+
+    def far_off(a, b):
+        """Pixels of a and b more than 8 levels apart in some channel."""
+        return sum(1 for i in range(0, len(a), 3)
+                   if max(abs(a[i + k] - b[i + k]) for k in range(3)) > 8)
+
+    off_float = far_off(images["float"], images["double"])
+    c.expect(off_float > 100, f"float alone only {off_float} pixels off: the scene lost its corners")
+    off_mixed = far_off(images["mixed"], images["double"])
+    c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
 
 
 def ellipsoid_grid(n_side):
