@@ -5,7 +5,7 @@
 // which object a ray hits (and which face), whether a light is shadowed,
 // which checker cell a point lies in, whether a ray enters or leaves,
 // whether it is totally reflected. The float pass keeps a word per pixel
-// (render.c reads it, retrace.c marks from it): a 25-bit hash of its
+// (render_bands.c reads it, retrace.c marks from it): a 25-bit hash of its
 // decisions, three bits and its camera rays' shadows. UNSURE: a decision
 // with a local margin (a checker cell face, the sign of n.d, total
 // internal reflection) was within its doubt of flipping, a texture's

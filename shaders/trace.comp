@@ -272,7 +272,7 @@ void camera_ray(real x, real y, vec2 lens_sample, out rvec3 origin, out rvec3 di
     }
 }
 
-// This workgroup's column and row in the dispatch: render.c cuts the rows
+// This workgroup's column and row in the dispatch: render_bands.c cuts the rows
 // into SLABS slabs of z, one per thread of lavapipe's, and slab z has rows
 // z, z + SLABS, z + 2 SLABS ... (dispatch_slabs).
 ivec2 group_place()

@@ -339,7 +339,7 @@ def case_walks_go_on(c):
 
 def case_slabs_agree(c):
     """A dispatch cut into slabs of workgroup rows, one per lavapipe thread
-    (render.c, dispatch_slabs), traces every pixel once: with 1, 2, 3 and
+    (render_bands.c, dispatch_slabs), traces every pixel once: with 1, 2, 3 and
     7 slabs the bytes are the same, at sizes whose rows of workgroups (29,
     5) no slab count above 1 divides, in the band pass, in mixed's retrace
     of a list of pixels (a far checkered quadric) and in walks that go on

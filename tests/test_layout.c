@@ -26,7 +26,7 @@
 #include "tp2_shared.h"
 
 /* The generated headers define the arrays with external linkage, as does
- * render.c; rename ours so the two can never clash at link time. */
+ * render_pipelines.c; rename ours so the two can never clash at link time. */
 #define tp2_trace_float test_spv_float
 #define tp2_trace_double test_spv_double
 #define tp2_trace_float_curved test_spv_float_curved
