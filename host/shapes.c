@@ -354,16 +354,24 @@ static double axis_of(const double a[3], const double b[3], double u[3])
     return vec3_unit(d, u);
 }
 
-static bool cylinder_bounds(const double *p, size_t n, size_t k, double lo[3], double hi[3])
+/* Box of the solid between a disk of radius ra around a and one of radius
+ * rb around b, both perpendicular to the axis a-b (a cylinder, a cone). */
+static bool tapered_bounds(const double a[3], double ra, const double b[3], double rb,
+                           double lo[3], double hi[3])
 {
     double u[3];
-    (void)n, (void)k;
-    axis_of(p, p + 3, u);
+    axis_of(a, b, u);
     box_empty(lo, hi);
-    disk_box(p, u, p[6], lo, hi);
-    disk_box(p + 3, u, p[6], lo, hi);
+    disk_box(a, u, ra, lo, hi);
+    disk_box(b, u, rb, lo, hi);
     widen(lo, hi);
     return true;
+}
+
+static bool cylinder_bounds(const double *p, size_t n, size_t k, double lo[3], double hi[3])
+{
+    (void)n, (void)k;
+    return tapered_bounds(p, p[6], p + 3, p[6], lo, hi);
 }
 
 static void cylinder_pack(const double *p, size_t n, size_t k, struct shape_record *rec,
@@ -396,14 +404,8 @@ static int cone_read(struct scene_reader *r)
 
 static bool cone_bounds(const double *p, size_t n, size_t k, double lo[3], double hi[3])
 {
-    double u[3];
     (void)n, (void)k;
-    axis_of(p, p + 4, u);
-    box_empty(lo, hi);
-    disk_box(p, u, p[3], lo, hi);
-    disk_box(p + 4, u, p[7], lo, hi);
-    widen(lo, hi);
-    return true;
+    return tapered_bounds(p, p[3], p + 4, p[7], lo, hi);
 }
 
 static void cone_pack(const double *p, size_t n, size_t k, struct shape_record *rec,
