@@ -269,6 +269,23 @@ static void task_centroids(const struct prim *prims, struct task *t)
         centroid_grow(t->cmin, t->cmax, prims[i].c);
 }
 
+/* kids: t's first mid boxes, and the rest. */
+static void halves(const struct task *t, uint32_t mid, struct task kids[2])
+{
+    kids[0].begin = t->begin;
+    kids[0].end = kids[1].begin = t->begin + mid;
+    kids[1].end = t->end;
+}
+
+/* The halves of a median split, with their centroid bounds. */
+static void median_halves(const struct prim *prims, const struct task *t, uint32_t mid,
+                          struct task kids[2])
+{
+    halves(t, mid, kids);
+    task_centroids(prims, &kids[0]);
+    task_centroids(prims, &kids[1]);
+}
+
 /* Makes node a leaf over t's boxes, bounds by a pass over them. */
 static void make_leaf(const struct prim *prims, const struct task *t,
                       struct bvh_node *node)
@@ -305,12 +322,7 @@ static int split_node(struct prim *prims, const struct task *t,
     }
     if (!(extent[axis] > 0)) { /* no plane separates them: halve by position */
         make_leaf(prims, t, node); /* the bounds */
-        uint32_t mid = n / 2;
-        kids[0].begin = t->begin;
-        kids[0].end = kids[1].begin = t->begin + mid;
-        kids[1].end = t->end;
-        task_centroids(prims, &kids[0]);
-        task_centroids(prims, &kids[1]);
+        median_halves(prims, t, n / 2, kids);
         return 1;
     }
 
@@ -389,17 +401,11 @@ static int split_node(struct prim *prims, const struct task *t,
     if (best < 0 || larger > capacity(levels_left - 1)) {
         mid = n / 2;
         prim_select(p, n, mid, axis);
-        kids[0].begin = t->begin;
-        kids[0].end = kids[1].begin = t->begin + mid;
-        kids[1].end = t->end;
-        task_centroids(prims, &kids[0]);
-        task_centroids(prims, &kids[1]);
+        median_halves(prims, t, mid, kids);
         return 1;
     }
     mid = partition_bins(p, n, best);
-    kids[0].begin = t->begin;
-    kids[0].end = kids[1].begin = t->begin + mid;
-    kids[1].end = t->end;
+    halves(t, mid, kids);
     for (int k = 0; k < 2; k++)
         centroid_empty(kids[k].cmin, kids[k].cmax);
     for (int b = 0; b < BVH_BINS; b++) {
