@@ -276,20 +276,33 @@ void shadows_kept(inout uint sig, int depth, float pixels, float stake)
         sig &= ~SHADOWS;
 }
 
-// Marks sig UNSURE where a shadow ray passed a sphere (hit or missed it)
-// nearer than the point it left may be off: `graze` is how near, less the
-// sphere test's own rounding (shapes.glsl, hit_sphere). The point has its
-// fresh rounding, `sizes` (a floor that is a sphere of radius 100 moves
-// its points by 5e-5, and the shadow edges seen in a mirror flip), and a
-// camera ray's its doubt along the surface too; deeper rays' doubts grow
+// How far a shadow ray's origin, a hit point, may be off along its
+// surface (twice, a safety factor): its fresh rounding, `sizes` (a floor
+// that is a sphere of radius 100 moves its points by 5e-5, and the shadow
+// edges seen in a mirror flip), and a camera ray's doubt along the
+// surface; a deeper ray's only where that doubt is known to be close to
+// float's error (HitDoubt.own): through flat mirrors and gentle ones, a
+// sphere floor of radius 1000 moves the point a mirrored ray meets by
+// 1e-4, and shadows thinner than that flipped
+// (tests/stress/needle-shadows-mirrored). Deeper rays' whole doubts grow
 // with the beam through mirror and glass balls, and counted here they
 // marked spheres.txt's 9.0% of pixels instead of 5.4% (README.TXT
-// "Accuracy"). (A miss cannot tell by how much for most kinds; for a
+// "Accuracy").
+float shadow_origin_doubt(int depth, HitDoubt h, float sizes)
+{
+    float along = depth == 0 ? h.along : h.own * h.width_along;
+    return 2.0 * (along + ROUNDING * sizes);
+}
+
+// Marks sig UNSURE where a shadow ray passed a sphere (hit or missed it)
+// nearer than the point it left may be off (shadow_origin_doubt): `graze`
+// is how near, less the sphere test's own rounding (shapes.glsl,
+// hit_sphere). (A miss cannot tell by how much for most kinds; for a
 // sphere it is the closest approach its test computes anyway; a flat
 // solid's edges are edge_graze's, shapes.glsl.)
 void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float sizes, float stake)
 {
-    if (at_stake(stake) && graze < 2.0 * ((depth == 0 ? h.along : 0.0) + ROUNDING * sizes))
+    if (at_stake(stake) && graze < shadow_origin_doubt(depth, h, sizes))
         sig |= UNSURE;
 }
 
@@ -312,13 +325,13 @@ vec2 edge_doubt(vec4 doubt, float stake)
     return 2.0 * vec2(doubt.x * abs(doubt.z), abs(doubt.y) + doubt.x * abs(doubt.w));
 }
 
-// The same for a shadow ray from a hit point: its origin's doubt, as
-// shadow_grazes counts it; its direction's rounding is the test's own.
+// The same for a shadow ray from a hit point: its origin's doubt
+// (shadow_origin_doubt); its direction's rounding is the test's own.
 vec2 shadow_edge_doubt(int depth, HitDoubt h, float sizes, float stake)
 {
     if (!at_stake(stake))
         return vec2(-NO_EDGE, 0.0);
-    return vec2(2.0 * ((depth == 0 ? h.along : 0.0) + ROUNDING * sizes), 0.0);
+    return vec2(shadow_origin_doubt(depth, h, sizes), 0.0);
 }
 
 // Marks sig UNSURE where a ray passed an edge within its doubt, nearer

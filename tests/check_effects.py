@@ -627,6 +627,22 @@ def case_grown_boxes_mark_as_loop(c):
                  f"{name}: the BVH's image differs from the loop's")
 
 
+def precision_images(c, scene, precisions):
+    """scene's pixels (PPM bytes) at 400 x 300 under each --precision."""
+    images = {}
+    for precision in precisions:
+        out = os.path.join(c.tmp, precision + ".ppm")
+        render(c.tp2, scene, out, (400, 300), ["--quiet", "--precision", precision])
+        images[precision] = read_ppm(out)[2]
+    return images
+
+
+def far_off(a, b):
+    """Pixels of a and b more than 8 levels apart in some channel."""
+    return sum(1 for i in range(0, len(a), 3)
+               if max(abs(a[i + k] - b[i + k]) for k in range(3)) > 8)
+
+
 def case_corners_on_the_hit_floor(c):
     """Triangles' corners resting on a floor, each on a pixel center's ray
     (tests/stress/triangle-corners-on-floor.txt): double finds the
@@ -637,19 +653,26 @@ def case_corners_on_the_hit_floor(c):
     float alone has hundreds (and mixed had 24 when it counted only
     edges nearer than the hit)."""
     scene = os.path.join(HERE, "stress", "triangle-corners-on-floor.txt")
-    images = {}
-    for precision in ("mixed", "double", "float"):
-        out = os.path.join(c.tmp, precision + ".ppm")
-        render(c.tp2, scene, out, (400, 300), ["--quiet", "--precision", precision])
-        images[precision] = read_ppm(out)[2]
-
-    def far_off(a, b):
-        """Pixels of a and b more than 8 levels apart in some channel."""
-        return sum(1 for i in range(0, len(a), 3)
-                   if max(abs(a[i + k] - b[i + k]) for k in range(3)) > 8)
-
+    images = precision_images(c, scene, ("mixed", "double", "float"))
     off_float = far_off(images["float"], images["double"])
     c.expect(off_float > 100, f"float alone only {off_float} pixels off: the scene lost its corners")
+    off_mixed = far_off(images["mixed"], images["double"])
+    c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
+
+
+def case_needle_shadows_in_mirror(c):
+    """Shadows thinner than float's error, seen in a mirror floor that is a
+    sphere of radius 1000 (tests/stress/needle-shadows-mirrored.txt): a
+    pixel in such a shadow that float lit has lit neighbours, so only the
+    shadow ray's edge test can mark it, with its origin's doubt known to
+    be float's error (signature.glsl, shadow_origin_doubt). No pixel of
+    mixed's image is then off by more than 8 levels from double's, where
+    float alone has more than 10 (and mixed had 2 when a deeper ray's
+    shadow ray counted only its origin's fresh rounding)."""
+    scene = os.path.join(HERE, "stress", "needle-shadows-mirrored.txt")
+    images = precision_images(c, scene, ("mixed", "double", "float"))
+    off_float = far_off(images["float"], images["double"])
+    c.expect(off_float > 10, f"float alone only {off_float} pixels off: the shadows lost their flips")
     off_mixed = far_off(images["mixed"], images["double"])
     c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
 
