@@ -627,20 +627,26 @@ def case_grown_boxes_mark_as_loop(c):
                  f"{name}: the BVH's image differs from the loop's")
 
 
-def precision_images(c, scene, precisions):
-    """scene's pixels (PPM bytes) at 400 x 300 under each --precision."""
+def far_off(a, b):
+    """Pixels of a and b (PPM bytes) more than 8 levels apart in some channel."""
+    return sum(1 for i in range(0, len(a), 3)
+               if max(abs(a[i + k] - b[i + k]) for k in range(3)) > 8)
+
+
+def mixed_catches(c, name, float_least, lost):
+    """On tests/stress/name at 400 x 300, float alone has more than
+    float_least pixels off by more than 8 levels from double (else the
+    scene has `lost` what makes it hard), and mixed none."""
+    scene = os.path.join(HERE, "stress", name)
     images = {}
-    for precision in precisions:
+    for precision in ("mixed", "double", "float"):
         out = os.path.join(c.tmp, precision + ".ppm")
         render(c.tp2, scene, out, (400, 300), ["--quiet", "--precision", precision])
         images[precision] = read_ppm(out)[2]
-    return images
-
-
-def far_off(a, b):
-    """Pixels of a and b more than 8 levels apart in some channel."""
-    return sum(1 for i in range(0, len(a), 3)
-               if max(abs(a[i + k] - b[i + k]) for k in range(3)) > 8)
+    off_float = far_off(images["float"], images["double"])
+    c.expect(off_float > float_least, f"float alone only {off_float} pixels off: {lost}")
+    off_mixed = far_off(images["mixed"], images["double"])
+    c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
 
 
 def case_corners_on_the_hit_floor(c):
@@ -652,12 +658,7 @@ def case_corners_on_the_hit_floor(c):
     pixel of its image is off by more than 8 levels from double's, where
     float alone has hundreds (and mixed had 24 when it counted only
     edges nearer than the hit)."""
-    scene = os.path.join(HERE, "stress", "triangle-corners-on-floor.txt")
-    images = precision_images(c, scene, ("mixed", "double", "float"))
-    off_float = far_off(images["float"], images["double"])
-    c.expect(off_float > 100, f"float alone only {off_float} pixels off: the scene lost its corners")
-    off_mixed = far_off(images["mixed"], images["double"])
-    c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
+    mixed_catches(c, "triangle-corners-on-floor.txt", 100, "the scene lost its corners")
 
 
 def case_needle_shadows_in_mirror(c):
@@ -669,12 +670,7 @@ def case_needle_shadows_in_mirror(c):
     mixed's image is then off by more than 8 levels from double's, where
     float alone has more than 10 (and mixed had 2 when a deeper ray's
     shadow ray counted only its origin's fresh rounding)."""
-    scene = os.path.join(HERE, "stress", "needle-shadows-mirrored.txt")
-    images = precision_images(c, scene, ("mixed", "double", "float"))
-    off_float = far_off(images["float"], images["double"])
-    c.expect(off_float > 10, f"float alone only {off_float} pixels off: the shadows lost their flips")
-    off_mixed = far_off(images["mixed"], images["double"])
-    c.expect(off_mixed == 0, f"mixed: {off_mixed} pixels off by more than 8 levels from double")
+    mixed_catches(c, "needle-shadows-mirrored.txt", 10, "the shadows lost their flips")
 
 
 def ellipsoid_grid(n_side):
@@ -1117,8 +1113,7 @@ def ppm_differences(a, b):
     (w, h, x), (w2, h2, y) = read_ppm(a), read_ppm(b)
     assert (w, h) == (w2, h2), f"{a} is {w}x{h}, {b} {w2}x{h2}"
     within1 = sum(abs(p - q) <= 1 for p, q in zip(x, y)) / len(x)
-    bad8 = sum(max(abs(x[i + k] - y[i + k]) for k in range(3)) > 8 for i in range(0, len(x), 3))
-    return within1, bad8
+    return within1, far_off(x, y)
 
 
 def case_mixed_same_when_fused(c):
