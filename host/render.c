@@ -609,26 +609,120 @@ static void packing_failed(const struct scene *s)
             s->nobjects);
 }
 
-int render_scene(const struct scene *s, const struct render_options *asked,
-                 render_rows_fn on_rows, void *user, struct render_stats *stats)
+/* The device job for the options asked. Double asked for needs
+ * shaderFloat64; auto and mixed want it (float without it), and so does a
+ * scene that needs double, refused with its position by
+ * check_double_needed on a device without it. */
+static void device_job_init(struct device_job *job, struct vkc *vk,
+                            const struct render_options *asked)
 {
-    struct renderer r = {0};
-    struct packed_scene packed = {0}, twin = {0};
-    struct device_job device = {
-        .vk = &r.vk,
+    *job = (struct device_job){
+        .vk = vk,
         .opt = {
             .device_index = asked->device_index,
             .need_float64 = asked->use_double && !asked->double_where,
             .want_float64 = asked->use_double || asked->retrace || fused_requested(),
             .validate = asked->validate,
             .chosen = device_chosen,
-            .chosen_user = &device,
+            .chosen_user = job,
         },
         .lock = PTHREAD_MUTEX_INITIALIZER,
         .changed = PTHREAD_COND_INITIALIZER,
     };
+}
+
+/* The packing job for the options chosen: the double twin only where
+ * mixed retraces. */
+static void pack_job_init(struct pack_job *job, const struct scene *s,
+                          const struct render_options *opt, struct packed_scene *packed,
+                          struct packed_scene *twin)
+{
+    *job = (struct pack_job){
+        .s = s,
+        .opt = {
+            .width = opt->width,
+            .height = opt->height,
+            .use_double = opt->use_double,
+            .samples = opt->samples,
+            .bvh_min = opt->bvh_min,
+            .bailout = opt->bailout,
+            .features_known = features_known,
+            .user = job,
+        },
+        .packed = packed,
+        .twin = opt->retrace ? twin : NULL,
+        .lock = PTHREAD_MUTEX_INITIALIZER,
+        .changed = PTHREAD_COND_INITIALIZER,
+    };
+}
+
+/* A scene that needs double (opt->double_where says where) on a device
+ * without it is refused; on one with it, said unless quiet. */
+static int check_double_needed(const struct render_options *opt, const struct vkc *vk)
+{
+    if (!opt->double_where)
+        return 0;
+    if (!vk->float64) {
+        fprintf(stderr, "%s: error: %s, and device '%s' has no shaderFloat64 to render "
+                        "it in double; choose another with --device (lavapipe has it)\n",
+                opt->double_where, opt->double_what, vk->props.deviceName);
+        return -1;
+    }
+    if (!opt->quiet)
+        fprintf(stderr, "%s: note: %s: rendering in double precision\n", opt->double_where,
+                opt->double_what);
+    return 0;
+}
+
+/* When render_scene's steps began or ended (clock_seconds()), for the
+ * phases --stats reports. */
+struct phase_times {
+    double pack_start;         /* packing began */
+    double make_start, made;   /* the early pipelines were made (early only) */
+    double packed;             /* packing was done */
+    double plan_start, planned; /* the plan after packing (and any remaking) */
+    double buffers_made, commands_made;
+};
+
+/* Fills stats from a finished render: what the scene and its buffers
+ * held, the rays counted, and the phases' seconds. Pipelines made on the
+ * way (the retrace's, made lazily) count as pipeline, not render. */
+static void record_stats(struct render_stats *st, const struct renderer *r,
+                         const struct packed_scene *packed, const struct device_job *device,
+                         bool early, const struct phase_times *t)
+{
+    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
+        st->in_place += r->buffers[i].imported ? r->buffers[i].size : 0;
+        st->in_place += r->twin[i].imported ? r->twin[i].size : 0;
+    }
+    read_ray_counts(r->buffers[TP2_BINDING_STATS].mapped, st->rays);
+    st->pass_rays = r->band.pass_rays;
+    st->device = device->seconds;
+    st->pipeline_beside = early ? t->made - t->make_start : 0;
+    st->bvh = packed->bvh_time;
+    st->bounded = packed->bounded;
+    st->unbounded = packed->unbounded;
+    st->has_bvh = packed->features.bvh;
+    st->upload = (t->packed - t->pack_start - packed->bvh_time) + (t->buffers_made - t->planned);
+    /* What the early pipelines kept waiting once packing was done (early
+     * only when packing outlasted the device), then what was made after. */
+    double waited = early && t->made > t->packed ? t->made - t->packed : 0;
+    st->pipeline = waited + (t->planned - t->plan_start) + (t->commands_made - t->buffers_made) +
+                   r->pipeline_time;
+    st->render -= r->pipeline_time;
+}
+
+int render_scene(const struct scene *s, const struct render_options *asked,
+                 render_rows_fn on_rows, void *user, struct render_stats *stats)
+{
+    struct renderer r = {0};
+    struct packed_scene packed = {0}, twin = {0};
+    struct device_job device;
+    struct pack_job packing;
+    struct phase_times t = {0};
     int rc = -1;
     memset(stats, 0, sizeof *stats);
+    device_job_init(&device, &r.vk, asked);
     pthread_t device_thread, pack_thread;
     bool device_threaded = pthread_create(&device_thread, NULL, create_device, &device) == 0;
     if (!device_threaded)
@@ -643,24 +737,8 @@ int render_scene(const struct scene *s, const struct render_options *asked,
     const struct render_options *opt = &o;
     bool cpu_double = o.use_double && !asked->use_double;
     const char *why = NULL; /* why auto or mixed is not what they say (--stats) */
-    struct pack_job packing = {
-        .s = s,
-        .opt = {
-            .width = opt->width,
-            .height = opt->height,
-            .use_double = opt->use_double,
-            .samples = opt->samples,
-            .bvh_min = opt->bvh_min,
-            .bailout = opt->bailout,
-            .features_known = features_known,
-            .user = &packing,
-        },
-        .packed = &packed,
-        .twin = opt->retrace ? &twin : NULL,
-        .lock = PTHREAD_MUTEX_INITIALIZER,
-        .changed = PTHREAD_COND_INITIALIZER,
-    };
-    double t1 = clock_seconds();
+    pack_job_init(&packing, s, opt, &packed, &twin);
+    t.pack_start = clock_seconds();
     bool pack_threaded = pthread_create(&pack_thread, NULL, pack, &packing) == 0;
     if (!pack_threaded)
         pack(&packing);
@@ -677,26 +755,18 @@ int render_scene(const struct scene *s, const struct render_options *asked,
     bool early = known && device.rc == 0 && (!opt->use_double || r.vk.float64) &&
                  (!pack_done(&packing) || env_is("TP2_EARLY_PIPELINES", "1"));
     int made_rc = 0;
-    double t_make = clock_seconds();
+    t.make_start = clock_seconds();
     if (early) {
         plan_passes(&r, opt, &packing.features, true);
         made_rc = make_pipelines(&r);
     }
-    double t_made = clock_seconds();
+    t.made = clock_seconds();
     if (pack_threaded)
         pthread_join(pack_thread, NULL);
-    double t_packed = packing.finished;
-    if (device.rc != 0 || check_band_fits(&r.vk, opt->width) != 0)
+    t.packed = packing.finished;
+    if (device.rc != 0 || check_band_fits(&r.vk, opt->width) != 0 ||
+        check_double_needed(opt, &r.vk) != 0)
         goto done;
-    if (opt->double_where && !r.vk.float64) {
-        fprintf(stderr, "%s: error: %s, and device '%s' has no shaderFloat64 to render "
-                        "it in double; choose another with --device (lavapipe has it)\n",
-                opt->double_where, opt->double_what, r.vk.props.deviceName);
-        goto done;
-    }
-    if (opt->double_where && !opt->quiet)
-        fprintf(stderr, "%s: note: %s: rendering in double precision\n",
-                opt->double_where, opt->double_what);
     snprintf(stats->device_name, sizeof stats->device_name, "%s", r.vk.props.deviceName);
     if (packing.rc != 0) {
         packing_failed(s);
@@ -727,7 +797,7 @@ int render_scene(const struct scene *s, const struct render_options *asked,
         why = "the device has no shaderFloat64";
     else if (opt->retrace && !twin_fits)
         why = "the double scene does not fit the device";
-    double t_buffers = clock_seconds();
+    t.plan_start = clock_seconds();
     if (!early) {
         plan_passes(&r, opt, &packed.features, twin_fits);
     } else if (!twin_fits && retracing(&r)) { /* planned as if it fit: plan again */
@@ -736,39 +806,22 @@ int render_scene(const struct scene *s, const struct render_options *asked,
         if (make_passes(&r) != 0)
             goto done;
     }
-    double t_planned = clock_seconds();
+    t.planned = clock_seconds();
     describe_precision(&r, asked, why, stats);
     r.band_rows = band_rows(&r.vk, opt->width, opt->height, packed.features.samples);
     if (create_buffers(&r, &packed, &twin, opt->width) != 0)
         goto done;
-    double t2 = clock_seconds();
-    for (int i = 0; i < TP2_INPUT_BUFFERS; i++) {
-        stats->in_place += r.buffers[i].imported ? r.buffers[i].size : 0;
-        stats->in_place += r.twin[i].imported ? r.twin[i].size : 0;
-    }
+    t.buffers_made = clock_seconds();
     if ((!early && make_pipelines(&r) != 0) || create_descriptors(&r) != 0 ||
         create_commands(&r) != 0)
         goto done;
-    double t3 = clock_seconds();
+    t.commands_made = clock_seconds();
     r.pipeline_time = 0; /* counted in the phases above */
     if (run_bands(&r, opt->width, opt->height, packed.features.samples, opt->progress,
                   on_rows, user, stats) != 0)
         goto done;
-    read_ray_counts(r.buffers[TP2_BINDING_STATS].mapped, stats->rays);
-    stats->pass_rays = r.band.pass_rays;
     warn_loop_limit(&r.vk, r.buffers[TP2_BINDING_STATS].mapped);
-    stats->device = device.seconds;
-    stats->pipeline_beside = early ? t_made - t_make : 0;
-    stats->bvh = packed.bvh_time;
-    stats->bounded = packed.bounded;
-    stats->unbounded = packed.unbounded;
-    stats->has_bvh = packed.features.bvh;
-    stats->upload = (t_packed - t1 - packed.bvh_time) + (t2 - t_planned);
-    /* What the early pipelines kept waiting once packing was done (early
-     * only when packing outlasted the device), then what was made after. */
-    double waited = early && t_made > t_packed ? t_made - t_packed : 0;
-    stats->pipeline = waited + (t_planned - t_buffers) + (t3 - t2) + r.pipeline_time;
-    stats->render -= r.pipeline_time; /* pipelines made on the way */
+    record_stats(stats, &r, &packed, &device, early, &t);
     rc = 0;
 done:
     renderer_destroy(&r);
