@@ -102,6 +102,53 @@ rvec3 safe_inverse(rvec3 d)
     return real(1.0) / mix(d, rvec3(tiny), lessThan(abs(d), rvec3(tiny)));
 }
 
+// Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
+// an any-hit ray has found one. An exact tie goes to the first object in
+// the layout, as in a plain loop, whatever order the BVH tests them in
+// (it differs where mixed's float pass grows boxes).
+bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
+                 vec2 doubt)
+{
+    int part;
+    float edge = NO_EDGE;
+    real t = hit_object(i, kind, o, d, i == start.object, start.inward, doubt, part, h.graze,
+                        edge);
+    bool grazed = SIGNATURES && edge < NO_EDGE;
+    if (grazed && edge <= float(h.t) + most_reach())
+        h.edge = min(h.edge, edge);
+    bool nearer = (t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed);
+    if (nearer) {
+        h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
+    } else if (SIGNATURES && t < h.next) {
+        h.next = t;
+        h.next_object = i;
+        h.next_part = part;
+    }
+    return nearer && any_hit;
+}
+
+// Without a BVH, where the bounded objects are of one kind and the
+// unbounded ones of one too (or none): a loop per kind, each with its
+// kind a constant, as lavapipe runs every arm of hit_object's chain of
+// kinds for each object it tests (one loop where both are one kind). A
+// `first` of the first loop's objects is tested first (k = -1); another
+// in its turn only (the hint is a guess: any occluder answers the same).
+Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
+{
+    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
+    const bool two_kinds = UNBOUNDED_SHAPE >= 0 && UNBOUNDED_SHAPE != BOUNDED_SHAPE;
+    int total = frame.geometry.x + frame.geometry.y;
+    int split = two_kinds ? frame.geometry.x : total;
+    bool done = false;
+    int k = OCCLUDER_HINT && HAS_AREA && first >= 0 && first < split ? -1 : 0;
+    for (; k < split && !done; ++k)
+        done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt);
+    if (two_kinds)
+        for (int i = split; i < total && !done; ++i)
+            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt);
+    return h;
+}
+
 // The nearest object with 0 < t < tmax, or, if any_hit, any one of them,
 // for a ray from o along unit d that starts on `start`; object `first`
 // (unless -1) is tested before all others, as a likely any-hit. Bounded
@@ -118,12 +165,13 @@ rvec3 safe_inverse(rvec3 d)
 // whose edge it passes so near: only a sure one settles the shadow (and
 // clears Hit.edge), else Hit.edge says that rounding may have decided it.
 //
-// One loop tests one object per step, and between the ranges of objects
-// to test, walks the BVH to its next leaf (nearest first), the unbounded
-// objects last; with few bounded objects (no BVH: a plain loop is faster)
-// the range is all of them at once and the loop is a plain loop. The
-// object test appears once, so each kind's code is compiled once (see
-// trace_step). A descent from a node to the leaf it leads to is one step
+// Without a BVH, and with the bounded objects' kind known, trace_plain
+// does it. Otherwise one loop tests one object per step, and between the
+// ranges of objects to test, walks the BVH to its next leaf (nearest
+// first), the unbounded objects last; with few bounded objects (no BVH: a
+// plain loop is faster) the range is all of them at once and the loop is
+// a plain loop. The object test appears once, so each kind's code is
+// compiled once (see trace_step). A descent from a node to the leaf it leads to is one step
 // (an inner loop): lanes descending no longer pay an object test per node
 // for the lanes testing objects beside them (README "Performance": 11% on BVH
 // scenes on lavapipe; testing a leaf's objects in an inner loop as well,
@@ -131,6 +179,8 @@ rvec3 safe_inverse(rvec3 d)
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first,
                 vec2 doubt)
 {
+    if (!USE_BVH && BOUNDED_SHAPE >= 0)
+        return trace_plain(o, d, start, tmax, any_hit, first, doubt);
     Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
@@ -151,25 +201,8 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         int link = 0;       // a child to enter after this step, if `enter`
         bool enter = false;
         if (i < end) {
-            int part;
-            float edge = NO_EDGE;
-            real t = hit_object(i, o, d, i == start.object, start.inward, doubt, part,
-                                h.graze, edge);
-            bool grazed = SIGNATURES && edge < NO_EDGE;
-            if (grazed && edge <= float(h.t) + most_reach())
-                h.edge = min(h.edge, edge);
-            // An exact tie goes to the first object in the layout, as
-            // in a plain loop, whatever order the BVH tests them in (it
-            // differs where mixed's float pass grows boxes).
-            if ((t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed)) {
-                h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
-                if (any_hit)
-                    break;
-            } else if (SIGNATURES && t < h.next) {
-                h.next = t;
-                h.next_object = i;
-                h.next_part = part;
-            }
+            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt))
+                break;
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out
             // Down through inner nodes (a path is at most TP2_BVH_STACK long)

@@ -723,12 +723,13 @@ bool same_in_float(int i)
 }
 
 // Object i's nearest t > 0 and part (see the top of this file); graze
-// and edge: see hit_sphere and edge_graze (doubt: the ray's).
-real hit_object(int i, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt, out int part,
-                inout float graze, inout float edge)
+// and edge: see hit_sphere and edge_graze (doubt: the ray's). kind is
+// shape_of(i), a constant where the caller knows it (intersect.glsl,
+// trace_plain): only that kind's test is then compiled there.
+real hit_object(int i, int kind, rvec3 o, rvec3 d, bool on, bool inward, vec2 doubt,
+                out int part, inout float graze, inout float edge)
 {
     part = 0;
-    int kind = shape_of(i);
     if (USES_SHAPE(TP2_SHAPE_SPHERE) && kind == TP2_SHAPE_SPHERE)
         return hit_sphere(i, o, d, on, inward, graze);
     if (USES_SHAPE(TP2_SHAPE_PLANE) && kind == TP2_SHAPE_PLANE)
