@@ -775,6 +775,25 @@ def case_many_faced_polyhedra_in_bvh(c):
     expect_in_bvh(c, scene, 16, (64, 48), 300)
 
 
+def case_one_kind_loop(c):
+    """Without a BVH, bounded and unbounded objects all of one kind are
+    tested in one loop (shaders/intersect.glsl, trace_plain; spheres and a
+    plane are case_bvh_matches_loop's two loops): 16 closed polyhedra and
+    a half-space written as a one-face polyhedron give the BVH walk's image
+    byte for byte, under mixed and in double."""
+    rows = geodesic_grid(4, 12).splitlines()
+    rows = [r for r in rows if "plane" not in r]
+    rows[rows.index("18")] = "17"  # the object count, the plane left out
+    scene = scene_file(c.tmp, "polyhedra.txt", "\n".join(rows) + "\n")
+    for precision in ("mixed", "double"):
+        renders = bvh_and_loop(c, scene, (64, 48), precision)
+        c.expect("(no BVH: 16 bounded primitives, in a plain loop; 1 unbounded" in renders[1][1],
+                 f"{precision}: {renders[1][1]!r}")
+        c.expect(renders[0][2] == renders[1][2], f"{precision}: BVH and loop images differ")
+        colors = {px for row in renders[0][2] for px in row}
+        c.expect(len(colors) > 100, f"{precision}: only {len(colors)} colors")
+
+
 def case_pipeline_cache(c):
     """The cache is written, reused, and survives corrupt or foreign files."""
     env = {"XDG_CACHE_HOME": os.path.join(c.tmp, "cache")}
