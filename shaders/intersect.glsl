@@ -165,17 +165,17 @@ Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
 // whose edge it passes so near: only a sure one settles the shadow (and
 // clears Hit.edge), else Hit.edge says that rounding may have decided it.
 //
-// Without a BVH, and with the bounded objects' kind known, trace_plain
-// does it. Otherwise one loop tests one object per step, and between the
-// ranges of objects to test, walks the BVH to its next leaf (nearest
-// first), the unbounded objects last; with few bounded objects (no BVH: a
-// plain loop is faster) the range is all of them at once and the loop is
-// a plain loop. The object test appears once, so each kind's code is
-// compiled once (see trace_step). A descent from a node to the leaf it leads to is one step
-// (an inner loop): lanes descending no longer pay an object test per node
-// for the lanes testing objects beside them (README "Performance": 11% on BVH
-// scenes on lavapipe; testing a leaf's objects in an inner loop as well,
-// or popping there too, was no better).
+// Without a BVH, and with the bounded objects' kind known, trace_plain does
+// it. Otherwise one loop tests one object per step, and between the ranges of
+// objects to test, walks the BVH to its next leaf (nearest first), the
+// unbounded objects last; with few bounded objects (no BVH: a plain loop is
+// faster) the range is all of them at once and the loop is a plain loop. The
+// object test appears once, so each kind's code is compiled once (see
+// trace_step). A descent from a node to the leaf it leads to is one step (an
+// inner loop): lanes descending no longer pay an object test per node for the
+// lanes testing objects beside them (README "Performance": 11% on BVH scenes
+// on lavapipe; testing a leaf's objects in an inner loop as well, or popping
+// there too, was no better).
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first,
                 vec2 doubt)
 {
