@@ -87,9 +87,11 @@ import sys
 import tempfile
 import time
 
+import lavapipe  # bench/lavapipe.py, beside this script
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
-LVP_ICD = '/usr/share/vulkan/icd.d/lvp_icd.x86_64.json'
+LVP_ICD = lavapipe.ICD
 EXTRA_SCENES = ['tests/stress/far-small-sphere.txt',
                 'tests/stress/mirror-corridor.txt',
                 'tests/stress/inside-glass.txt',

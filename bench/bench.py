@@ -70,9 +70,10 @@ sys.dont_write_bytecode = True   # no __pycache__ in the source tree
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
+import lavapipe  # noqa: E402
 import scene2pov  # noqa: E402
 
-LVP_ICD = '/usr/share/vulkan/icd.d/lvp_icd.x86_64.json'
+LVP_ICD = lavapipe.ICD
 DEFAULT_CORPUS = os.environ.get('TP2_CORPUS', os.path.join(REPO, '..', 'shared', 'corpus'))
 TARGETS = {(1920, 1080): 0.5, (400, 300): 1.0}
 

@@ -17,9 +17,11 @@ import re
 import subprocess
 import sys
 
+import lavapipe  # bench/lavapipe.py, beside this script
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
-LVP_ICD = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json"
+LVP_ICD = lavapipe.ICD
 
 
 def main():

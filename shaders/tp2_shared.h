@@ -38,7 +38,7 @@
 #define TP2_FINISH_SPEC_BYTES 0
 
 /* Objects and BVH nodes, the loads of every ray's inner loop, are read as
- * texel buffers of 16-byte texels (usamplerBuffer over R32G32B32A32_UINT,
+ * texel buffers of 16-byte texels (utextureBuffer over R32G32B32A32_UINT,
  * bits reinterpreted): on lavapipe a texel fetch loads a whole texel,
  * where a storage-buffer load loops over the SIMD lanes for each word
  * (renders 4-19% faster, README "Performance"). An object is

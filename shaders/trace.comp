@@ -8,6 +8,7 @@
 // double-precision geometry (the reference image); lighting stays in float.
 // Specialization constants (layout.glsl) strip what the scene does not use.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require // texelFetch of a utextureBuffer
 
 #include "tp2_shared.h"
 

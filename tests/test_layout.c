@@ -8,7 +8,7 @@
  * equals sizeof the C struct, and each member of the GLSL struct has the
  * C field's name, offset, size and scalar type, with as many members as the
  * C table has fields. The objects and the BVH nodes are texel buffers
- * (usamplerBuffer: checked by name, binding and image type; their texel
+ * (utextureBuffer: checked by name, binding and image type; their texel
  * layout is pinned by asserts in gpu_layout.h and bvh.h). The bindings of
  * storage and texel buffers must be exactly 0 .. TP2_BINDING_COUNT - 1
  * but the output (trace.comp) and exactly the image and the output
@@ -57,7 +57,6 @@ enum {
     OP_TYPE_INT = 21,
     OP_TYPE_FLOAT = 22,
     OP_TYPE_IMAGE = 25,
-    OP_TYPE_SAMPLED_IMAGE = 27,
     OP_TYPE_VECTOR = 23,
     OP_TYPE_ARRAY = 28,
     OP_TYPE_RUNTIME_ARRAY = 29,
@@ -527,8 +526,10 @@ static void check_stats(const struct spv *m)
 }
 
 /* A texel buffer of layout.glsl: the uniform variable `name`, at binding
- * in set 0, a usamplerBuffer (sampled image of Dim Buffer over 32-bit
- * unsigned integers), as the host's R32G32B32A32_UINT views need. */
+ * in set 0, a utextureBuffer (an image of Dim Buffer, Sampled 1, over
+ * 32-bit unsigned integers, with no sampler: a sampled image of Dim Buffer
+ * is invalid since SPIR-V 1.6), as the host's R32G32B32A32_UINT views
+ * need. */
 static void check_texel_buffer(const struct spv *m, const char *name, long binding)
 {
     int count = 0;
@@ -547,14 +548,13 @@ static void check_texel_buffer(const struct spv *m, const char *name, long bindi
                spv_decoration(m, var, DEC_DESCRIPTOR_SET) == 0,
            "%s: texel buffer %s: Binding %ld in set 0", m->label, name, binding);
     size_t ptr = spv_def(m, m->w[at + 1]);
-    size_t sampled = spv_wc(m, ptr) >= 4 ? spv_def(m, m->w[ptr + 3]) : 0;
-    size_t image = spv_op(m, sampled) == OP_TYPE_SAMPLED_IMAGE ? spv_def(m, m->w[sampled + 2]) : 0;
+    size_t image = spv_wc(m, ptr) >= 4 ? spv_def(m, m->w[ptr + 3]) : 0;
     size_t elem = spv_op(m, image) == OP_TYPE_IMAGE && spv_wc(m, image) >= 9
                       ? spv_def(m, m->w[image + 2])
                       : 0;
     expect(elem && m->w[image + 3] == DIM_BUFFER && m->w[image + 7] == 1 &&
                spv_op(m, elem) == OP_TYPE_INT && m->w[elem + 2] == 32 && m->w[elem + 3] == 0,
-           "%s: texel buffer %s: a usamplerBuffer", m->label, name);
+           "%s: texel buffer %s: a utextureBuffer", m->label, name);
 }
 
 /* Every storage and texel buffer in the module: bindings exactly those
