@@ -371,8 +371,8 @@ def case_loop_limit_warning(c):
     """A single ray that needs more than lavapipe allows one invocation (it
     meets 20 polyhedra of 4096 faces: 81920 face tests) cannot be split:
     tp2 writes the image and says how many samples are wrong. Mesa 25's
-    lavapipe cuts no loop: there tp2 says nothing and every ray reaches the
-    last polyhedron, the only one it hits (red: a cone ahead of the
+    lavapipe does not cut these rays: there tp2 says nothing and every ray
+    reaches the last polyhedron, the only one it hits (red: a cone ahead of the
     camera; the others, cones around it, open where it looks), which a
     cut ray would not."""
     def faces(d):
