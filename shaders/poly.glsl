@@ -15,19 +15,24 @@
 const int ROOT_STEPS = 60;
 
 // Roots are sought in units of the object's size (the torus fits the unit
-// sphere): a step this small has reached the precision of `real`.
-// The cuts (a slope's roots) only split an interval into monotone pieces;
-// in double a Newton step of 1e-8 already leaves an error near 1e-16 (the
-// steps double the digits), so the one more step ROOT_TOL takes is spared:
-// torus.txt's double render 0.96-1.00 of its time, the same bytes. In float
-// that step changed an image (a pixel of torus-edge-on by 3 levels), so
-// float keeps ROOT_TOL.
+// sphere). A search ends when a bracket is within tol.x, a halving step
+// within tol.x, or a Newton step (one that stays in the bracket) within
+// tol.y. In double a Newton step of 1e-8 already leaves an error near
+// (f'' / 2 f') 1e-16 (each step doubles the digits), of the order of the
+// rounding limit of a root of a polynomial evaluated in double, eps
+// sum |c_k s^k| / |f'|, so the one more step a tol.y of 4e-16 took is
+// spared: for the cuts (a slope's roots, which only split an interval into
+// monotone pieces) torus.txt's double render took 0.96-1.00 of its time,
+// for the roots too 0.87 (README "Performance"), the same bytes. Halving
+// still goes on to 4e-16: it gains a bit a step, not digits. In float
+// the last step changed an image (a pixel of torus-edge-on by 3 levels),
+// so float keeps it.
 #ifdef TP2_DOUBLE
-const real ROOT_TOL = 4e-16LF;
-const real CUT_TOL = 1e-8LF;
+const rvec2 ROOT_TOL = rvec2(4e-16LF, 1e-8LF);
+const rvec2 CUT_TOL = rvec2(1e-8LF);
 #else
-const real ROOT_TOL = 2e-7;
-const real CUT_TOL = ROOT_TOL;
+const rvec2 ROOT_TOL = rvec2(2e-7);
+const rvec2 CUT_TOL = ROOT_TOL;
 #endif
 
 real poly_value(real c4, rvec4 c, real s)
@@ -43,8 +48,8 @@ real poly_slope(real c4, rvec4 c, real s)
 // The root in [a, b] of a polynomial monotone there whose values at a and
 // b differ in sign (fa, fb): from where the chord crosses zero, Newton
 // steps, or halving when they leave the bracket, until a step or the
-// bracket is within tol (ROOT_TOL, or CUT_TOL for cuts).
-real bracketed_root(real c4, rvec4 c, real a, real b, real fa, real fb, real tol)
+// bracket is within tol (ROOT_TOL, or CUT_TOL for cuts; see above).
+real bracketed_root(real c4, rvec4 c, real a, real b, real fa, real fb, rvec2 tol)
 {
     real x = a - fa * (b - a) / (fb - fa);
     if (!(x > a && x < b))
@@ -58,9 +63,10 @@ real bracketed_root(real c4, rvec4 c, real a, real b, real fa, real fb, real tol
         else
             b = x;
         real next = x - fx / poly_slope(c4, c, x);
-        if (!(next > a && next < b)) // outside the bracket, or NaN
+        bool newton = next > a && next < b; // false outside the bracket, or NaN
+        if (!newton)
             next = 0.5 * (a + b);
-        bool done = abs(next - x) <= tol || b - a <= tol;
+        bool done = abs(next - x) <= (newton ? tol.y : tol.x) || b - a <= tol.x;
         x = next;
         if (done)
             break;
@@ -104,7 +110,7 @@ rvec3 insert3(rvec3 v, real x)
 
 // The roots in [lo, hi] of the polynomial (c4, c) of degree 3 or 4 whose
 // derivative's roots in [lo, hi] are `cuts` (a list as above), to tol.
-rvec4 roots_between(real c4, rvec4 c, rvec3 cuts, real lo, real hi, real tol)
+rvec4 roots_between(real c4, rvec4 c, rvec3 cuts, real lo, real hi, rvec2 tol)
 {
     rvec4 roots = rvec4(NO_HIT);
     real a = lo;
@@ -123,7 +129,7 @@ rvec4 roots_between(real c4, rvec4 c, rvec3 cuts, real lo, real hi, real tol)
 
 // The roots in [lo, hi] of the cubic c.w s^3 + c.z s^2 + c.y s + c.x
 // (c.w != 0), to tol.
-rvec4 cubic_roots(rvec4 c, real lo, real hi, real tol)
+rvec4 cubic_roots(rvec4 c, real lo, real hi, rvec2 tol)
 {
     rvec2 q;
     int nq = quadratic_roots(3.0 * c.w, 2.0 * c.z, c.y, q);
