@@ -42,7 +42,7 @@ scene). --touching adds, from a stream of its own, flat faces resting on
 others or a hair off them (0, +-1e-10 of the coordinate, one float step,
 1e-7 or 1e-5): boxes on the floor and on a box, a triangle and a plane
 on a box's top, a half-space wall against a box's side, a tilted slab
-with a triangle on its top (host/twins.c's cases). --aligned writes
+with a triangle on its top (host/pack/twins.c's cases). --aligned writes
 another kind of scene instead, for 400 x 300 only: a camera on the axes
 with a 90 degree field of view, and boxes and cubes (polyhedra) whose
 corners lie on odd coordinates at distances of 4, 12, 20, 60 or 100, so

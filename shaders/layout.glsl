@@ -1,7 +1,7 @@
 // layout.glsl: the GPU structs as the shader sees them (std430).
-// Twin of host/gpu_layout_types.h (and struct bvh_gpu_node in host/bvh.h); keep
+// Twin of host/pack/gpu_layout_types.h (and struct bvh_gpu_node in host/pack/bvh.h); keep
 // field names, order and types identical: tests/test_layout.c checks the
-// storage buffers' against the SPIR-V, and host/gpu_layout.h pins the
+// storage buffers' against the SPIR-V, and host/pack/gpu_layout.h pins the
 // records read as texels (lights, pigments, finishes, objects, their
 // extra rows, BVH nodes) to the texel counts of tp2_shared.h that the
 // loaders below use.
@@ -125,7 +125,7 @@ layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
 #define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
 
 // Object i, one primitive: rows a, b, c (what each kind keeps in them:
-// host/shapes.c) and ids (TP2_SHAPE_*, pigment, finish, first extra_row).
+// host/scene/shapes.c) and ids (TP2_SHAPE_*, pigment, finish, first extra_row).
 #ifdef TP2_DOUBLE
 #define OBJECT_TEXELS TP2_OBJECT_TEXELS_D
 #define ROW_TEXELS TP2_ROW_TEXELS_D
@@ -134,9 +134,9 @@ layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
 #define ROW_TEXELS TP2_ROW_TEXELS_F
 #endif
 
-// Lights, pigments and finishes (tp2_shared.h; host/gpu_layout.h pins
+// Lights, pigments and finishes (tp2_shared.h; host/pack/gpu_layout.h pins
 // the C structs to these texels). What each pigment kind keeps where:
-// host/pigments.c.
+// host/scene/pigments.c.
 #ifdef TP2_DOUBLE
 #define LIGHT_TEXELS TP2_LIGHT_TEXELS_D
 #define PIGMENT_TEXELS TP2_PIGMENT_TEXELS_D

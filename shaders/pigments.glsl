@@ -1,5 +1,5 @@
 // pigments.glsl: the color of pigment `index` at point p (SPEC 3). What
-// each kind keeps in its record is listed in host/pigments.c.
+// each kind keeps in its record is listed in host/scene/pigments.c.
 
 // Texel (x, y) of the texture whose first texel is `first`.
 vec3 texel(int first, int width, int x, int y)
@@ -98,7 +98,7 @@ bool unsure_cell(rvec3 p, rvec3 o, real size, int pigment, rvec3 x, rvec3 cell, 
 
 // How fast pigment `index`'s color may change along a surface: color
 // units per unit of length, the most of any channel (each kind's slope
-// in host/pigments.c; 0 for solids and checkers). A hit point off by d
+// in host/scene/pigments.c; 0 for solids and checkers). A hit point off by d
 // along the surface has its color off by up to d times this.
 float pigment_slope(int index)
 {
@@ -113,7 +113,7 @@ vec3 pigment_color(int index, rvec3 p, rvec3 nf, int object, float doubt, inout 
     int kind = pigment_kind(index).x;
     if (USES_PIGMENT(TP2_PIGMENT_CHECKER) && kind == TP2_PIGMENT_CHECKER) {
         // Cells are the scene's: yzw is where the packed origin lies in it
-        // (0 unless the scene was moved; host/pigments.c), and adding it
+        // (0 unless the scene was moved; host/scene/pigments.c), and adding it
         // rounds by a share of its size.
         rvec4 cube = pigment_p(index);
         real size = cube.x;

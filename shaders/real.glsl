@@ -7,7 +7,7 @@
 // face through a row of pixel centers, as course files with whole-number
 // coordinates have) falls on the same side on lavapipe and on a GPU. The
 // host decorates the double build's arithmetic NoContraction (no fused
-// multiply-adds: host/spirv_exact.h), and here dot, length and normalize
+// multiply-adds: host/gpu/spirv_exact.h), and here dot, length and normalize
 // are products, sums, a sqrt and a division in a fixed order: GLSL's own
 // leave order and method to the driver (an NVIDIA H200's double image of
 // a course file differed from lavapipe's at 37 pixels of such a row, and

@@ -1,5 +1,5 @@
 // shapes.glsl: each kind of primitive's intersection (hit_KIND) and surface
-// (surface_KIND). What each keeps in its record is listed in host/shapes.c.
+// (surface_KIND). What each keeps in its record is listed in host/scene/shapes.c.
 //
 // Every hit_KIND returns the nearest t > 0 of object i along the ray o + t d
 // (|d| = 1), or NO_HIT, and the part of it that was hit (a face, a cap).
@@ -831,7 +831,7 @@ rvec3 flat_normal(int i, int part)
 // the same object wins in both: both flat, on one plane (the hit's normal
 // n and part b_part of b agree), and neither has a face near another
 // object's face without being on its plane (a box top at 0.3 under a
-// plane at 0.3000000001: TP2_SHAPE_NEAR_TWIN, host/twins.h). Two faces
+// plane at 0.3000000001: TP2_SHAPE_NEAR_TWIN, host/pack/twins.h). Two faces
 // that cross tie in float along the line where they meet, which may lie
 // along a row of pixel centers (a mirror floor meeting a wall there),
 // where double orders them its own way. b < 0: no second crossing.

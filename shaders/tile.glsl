@@ -1,5 +1,5 @@
 // tile.glsl: the push constants of every dispatch (struct gpu_tile in
-// host/gpu_layout.h; unit_layout checks the two agree), shared by
+// host/pack/gpu_layout.h; unit_layout checks the two agree), shared by
 // trace.comp (through layout.glsl) and finish.comp.
 //
 // What this dispatch covers: a band of pixels (or the listed ones of it),

@@ -84,7 +84,7 @@
 #define TP2_SPEC_SLABS 17    /* int: slabs a dispatch's rows of workgroups are cut into (render_bands.c) */
 #define TP2_SPEC_COUNT 18
 
-/* A pixel's signature word (shaders/signature.glsl, host/retrace.c): a
+/* A pixel's signature word (shaders/signature.glsl, host/render/retrace.c): a
  * hash of the float pass's decisions, three bits and the camera rays'
  * shadows. UNSURE: a decision was within float's error of flipping;
  * SENSITIVE: boundaries seen there may move by a pixel's fraction that
@@ -136,10 +136,10 @@
 #define TP2_WALK_CONTINUE 2
 #define TP2_WALK_KINDS 3
 
-/* Nodes on the BVH traversal stack (host/bvh.h guarantees the tree fits). */
+/* Nodes on the BVH traversal stack (host/pack/bvh.h guarantees the tree fits). */
 #define TP2_BVH_STACK 32
 
-/* A BVH child link (host/bvh.h, struct bvh_gpu_node): a negative link is
+/* A BVH child link (host/pack/bvh.h, struct bvh_gpu_node): a negative link is
  * the inner node -link; a link >= 0 a leaf over the objects from
  * link >> TP2_BVH_LEAF_BITS, (link & TP2_BVH_LEAF_MASK) + 1 of them. */
 #define TP2_BVH_LEAF_BITS 3
@@ -153,14 +153,14 @@
  * tested through the BVH as by a plain loop. */
 #define TP2_EDGE_REACH (1.0 / 4096.0)
 
-/* Pigment kinds (Pigment.kind.x); host/pigments.c maps keywords to them
+/* Pigment kinds (Pigment.kind.x); host/scene/pigments.c maps keywords to them
  * and shaders/pigments.glsl colors each. */
 #define TP2_PIGMENT_SOLID 0
 #define TP2_PIGMENT_CHECKER 1
 #define TP2_PIGMENT_GRADIENT 2
 #define TP2_PIGMENT_TEXMAP 3
 
-/* Shape kinds (Object.ids.x); host/shapes.c maps keywords to them (a mesh
+/* Shape kinds (Object.ids.x); host/scene/shapes.c maps keywords to them (a mesh
  * is triangles) and shaders/shapes.glsl intersects each. */
 #define TP2_SHAPE_SPHERE 0
 #define TP2_SHAPE_PLANE 1
@@ -182,7 +182,7 @@
 #define TP2_SHAPE_INEXACT 0x10000
 /* And this one: some face of the flat object lies so near another
  * object's face, without being on the same plane, that float may find
- * both at one distance where double does not (host/twins.h). Set in the
+ * both at one distance where double does not (host/pack/twins.h). Set in the
  * float scene of --precision auto only; shaders/shapes.glsl's
  * coincident_faces takes equal distances for coincident faces only
  * without it. */
@@ -215,7 +215,7 @@
 
 /* The pixels 8 lanes of one lavapipe SIMD batch trace together, in the
  * band pass (trace.comp, pixel_in_group) and in the retrace pass's list
- * (host/retrace.c): a 4 x 2 block, whose rays diverge less than a row of
+ * (host/render/retrace.c): a 4 x 2 block, whose rays diverge less than a row of
  * 8 pixels' (README "Performance"). */
 #define TP2_LANE_BLOCK_X 4
 #define TP2_LANE_BLOCK_Y 2

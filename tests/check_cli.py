@@ -231,7 +231,7 @@ def case_input_numbers_across_reads(c):
 
 
 # Float's range (README.TXT, "Precision"; scene_length_limit in
-# host/scene.c): a sphere 1e20 away with radius 5e19, seen from the origin
+# host/scene/scene.c): a sphere 1e20 away with radius 5e19, seen from the origin
 # at 90 degrees; it covers the middle of the image, the corners are the
 # gray background. In float |o - c|^2 = 1e40 is infinite and the sphere
 # vanished, exit 0.

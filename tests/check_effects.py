@@ -735,7 +735,7 @@ def expect_in_bvh(c, scene, bounded, size, min_colors):
 
 
 def case_ellipsoids_in_bvh(c):
-    """An ellipsoid written as a quadric has a box (host/shapes.c,
+    """An ellipsoid written as a quadric has a box (host/scene/shapes.c,
     quadric_bounds), so a grid of them goes into the BVH while a
     hyperboloid and a plane stay unbounded; the image is the loop's."""
     expect_in_bvh(c, scene_file(c.tmp, "ellipsoids.txt", ellipsoid_grid(6)), 36, (96, 72), 500)
@@ -778,7 +778,7 @@ def geodesic_grid(n_side, faces):
 
 
 def case_many_faced_polyhedra_in_bvh(c):
-    """A bounded polyhedron of any face count has a box (host/convex.c's
+    """A bounded polyhedron of any face count has a box (host/scene/convex.c's
     linear programs), so 16 polyhedra of 160 faces (past the 128 of the
     method before) go into the BVH while a half-space and a plane stay
     unbounded; the image is the loop's."""
@@ -1149,7 +1149,7 @@ def ppm_differences(a, b):
 def case_mixed_same_when_fused(c):
     """The same image on a device that rounds otherwise (issue 9 item 3):
     TP2_FUSED=1 makes the shaders round as a GPU compiler that fuses
-    multiply-adds and dot products would (host/spirv_fused.h). On scenes
+    multiply-adds and dot products would (host/gpu/spirv_fused.h). On scenes
     built to make float fail, that flips float's decisions (pixels off by
     more than 8 levels between the two devices), while mixed's two images
     stay within one level of each other almost everywhere, with none off
@@ -1190,7 +1190,7 @@ def case_mixed_same_when_fused(c):
 
 def case_specialized_same_image(c):
     """Each pipeline's shader has the code its specialization constants
-    rule out taken away before lavapipe sees it (host/spirv_specialize.h):
+    rule out taken away before lavapipe sees it (host/gpu/spirv_specialize.h):
     the image is the same bytes as from the whole module
     (TP2_SPECIALIZE=0), under mixed (float pass and double retrace), auto
     (on lavapipe double, from the double twin), float and double, on every tier of kinds (spheres and planes; meshes; the

@@ -1,5 +1,5 @@
 /* test_spirv_exact.c: the double build's geometry evaluated as written
- * (shaders/real.glsl, host/spirv_exact.h). On each of the six embedded
+ * (shaders/real.glsl, host/gpu/spirv_exact.h). On each of the six embedded
  * trace shaders, after spirv_exact: the module is valid SPIR-V (SPIRV-Tools'
  * validator), every 64-bit arithmetic result is decorated NoContraction
  * exactly once and no other result is, and a second pass adds nothing. On

@@ -1,4 +1,4 @@
-/* test_twins.c: near twins among flat faces (host/twins.h) and the shape
+/* test_twins.c: near twins among flat faces (host/pack/twins.h) and the shape
  * table's face planes they come from.
  *
  * Faces of real records (boxes, planes, polyhedra, triangles, packed by

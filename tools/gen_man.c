@@ -96,7 +96,7 @@ int main(int argc, char **argv)
         perror(argv[1]);
         return 1;
     }
-    fputs(".\\\" Generated from host/usage.h by tools/gen_man.c; do not edit.\n"
+    fputs(".\\\" Generated from host/app/usage.h by tools/gen_man.c; do not edit.\n"
           ".TH TP2 1 \"\" \"tp2 " TP2_VERSION "\" \"User Commands\"\n"
           ".SH NAME\ntp2 \\- a Whitted ray tracer on Vulkan compute\n", f);
     const char *text = TP2_USAGE_TEXT;
