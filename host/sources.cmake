@@ -22,6 +22,7 @@ set(TP2_SCENE_SOURCES
   ${TP2_HOST}/scene/scene.c
   ${TP2_HOST}/scene/scene_json.c
   ${TP2_HOST}/scene/scene_parse.c
+  ${TP2_HOST}/scene/scene_reader.c
   ${TP2_HOST}/scene/shapes.c
   ${TP2_HOST}/scene/texture.c)
 set(TP2_PACK_SOURCES

@@ -1,6 +1,7 @@
 /* scene_parse.c: scene text -> struct scene, one function per section;
  * each kind of pigment and object reads its own parameters through the
- * tables of pigments.c and shapes.c (scene_reader.h is their interface).
+ * tables of pigments.c and shapes.c, and everything reads its tokens
+ * through the reader (scene_reader.c).
  *
  * The parser looks one token ahead (p->tok). A lexical error is reported
  * only when the parser reaches it, so errors come out in text order. */
@@ -8,342 +9,19 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "big_alloc.h"
 #include "lexer.h"
 #include "pigments.h"
 #include "scene_reader.h"
+#include "scene_reader_state.h"
 #include "shapes.h"
-
-/* Counts, indices and integer settings are kept within int32. */
-#define INT_LIMIT 2147483647u
 
 /* |w x up| below this (unit vectors) means up gives no usable "up". */
 #define PARALLEL_EPS 1e-9
-
-struct scene_reader {
-    struct lexer lx;
-    struct token tok; /* the next token, not yet consumed */
-    const char *name;
-    char *dir;         /* the scene file's folder, for the files it names */
-    const char *shown; /* name as messages show it (lexer_escape) */
-    char *shown_copy;  /* what shown points to, unless out of memory */
-    char *err;
-    size_t errsize;
-    struct scene s;
-    size_t cap_lights, cap_pigments, cap_finishes, cap_objects, cap_reals;
-};
-
-/* ---- messages ---------------------------------------------------------- */
-
-static void next(struct scene_reader *p)
-{
-    lexer_next(&p->lx, &p->tok);
-}
-
-/* Writes "NAME:LINE:COL: error: ..." at token at; returns -1. */
-int read_fail(struct scene_reader *p, const struct token *at, const char *fmt,
-              ...)
-{
-    char msg[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (p->err && p->errsize > 0)
-        snprintf(p->err, p->errsize, "%s:%zu:%zu: error: %s", p->shown,
-                 at->line, at->col, msg);
-    return -1;
-}
-
-int read_fail_text(struct scene_reader *p, const char *text)
-{
-    if (p->err && p->errsize > 0)
-        snprintf(p->err, p->errsize, "%s", text);
-    return -1;
-}
-
-static int fail_oom(struct scene_reader *p)
-{
-    if (p->err && p->errsize > 0)
-        snprintf(p->err, p->errsize, "tp2: out of memory reading '%s'",
-                 p->shown);
-    return -1;
-}
-
-/* "expected WHAT, found TOKEN" at token at; a lexical error there wins,
- * since it says more about the text than what the grammar wanted. */
-int read_expected(struct scene_reader *p, const struct token *at,
-                  const char *what)
-{
-    if (at->kind == TOKEN_ERROR)
-        return read_fail(p, at, "%s", p->lx.message);
-    char found[LEXER_QUOTE_SIZE];
-    token_describe(at, found, sizeof found);
-    return read_fail(p, at, "expected %s, found %s", what, found);
-}
-
-static int fail_expected(struct scene_reader *p, const char *what)
-{
-    return read_expected(p, &p->tok, what);
-}
-
-/* ---- tokens ------------------------------------------------------------ */
-
-static int is_word(const struct token *t, const char *w)
-{
-    return t->kind == TOKEN_WORD && t->len == strlen(w) &&
-           memcmp(t->text, w, t->len) == 0;
-}
-
-enum uint_kind { UINT_NOT, UINT_OK, UINT_TOO_BIG };
-
-/* Classifies a token as plain decimal digits within INT_LIMIT. Anything
- * else ("3.0", "-1", "1e3", "+3") is not a count, though strtod reads it. */
-static enum uint_kind token_uint(const struct token *t, uint32_t *v)
-{
-    uint64_t acc = 0;
-    if (t->kind != TOKEN_NUMBER)
-        return UINT_NOT;
-    for (size_t i = 0; i < t->len; i++) {
-        char c = t->text[i];
-        if (c < '0' || c > '9')
-            return UINT_NOT;
-        if (acc <= INT_LIMIT)
-            acc = acc * 10 + (uint64_t)(c - '0');
-    }
-    *v = (uint32_t)(acc <= INT_LIMIT ? acc : 0);
-    return acc <= INT_LIMIT ? UINT_OK : UINT_TOO_BIG;
-}
-
-/* Digits of a too-big integer token, cut like a quote but without quotes. */
-static void digits_text(const struct token *t, char *out, size_t size)
-{
-    int n = t->len > 32 ? 32 : (int)t->len;
-    snprintf(out, size, "%.*s%s", n, t->text, t->len > 32 ? "..." : "");
-}
-
-/* ---- values ------------------------------------------------------------ */
-
-/* Reads one finite number; *at (may be NULL) gets its token. */
-static int read_number(struct scene_reader *p, double *v, struct token *at)
-{
-    if (at)
-        *at = p->tok;
-    if (p->tok.kind == TOKEN_NUMBER) {
-        *v = p->tok.value;
-        next(p);
-        return 0;
-    }
-    if (token_is_nonfinite_word(&p->tok))
-        return fail_expected(p, "a finite number");
-    return fail_expected(p, "a number");
-}
-
-int read_numbers(struct scene_reader *p, double *v, int n, struct token *at)
-{
-    if (at) /* where the first number is, even to a compiler that cannot see n > 0 */
-        *at = p->tok;
-    for (int i = 0; i < n; i++)
-        if (read_number(p, &v[i], i == 0 ? at : NULL))
-            return -1;
-    return 0;
-}
-
-/* Reads a number that must be > 0 (or >= 0 when zero_ok); what names it. */
-int read_bounded(struct scene_reader *p, double *v, int zero_ok,
-                 const char *what)
-{
-    struct token at;
-    if (read_number(p, v, &at))
-        return -1;
-    if (*v > 0 || (zero_ok && *v == 0))
-        return 0;
-    return read_expected(p, &at, what);
-}
-
-/* Reads an integer in [min, INT_LIMIT]; what is the "expected" phrase and
- * noun names the value when it is too large. */
-static int read_int(struct scene_reader *p, uint32_t min, const char *what,
-                    const char *noun, uint32_t *v)
-{
-    enum uint_kind k = token_uint(&p->tok, v);
-    if (k == UINT_TOO_BIG) {
-        char digits[48];
-        digits_text(&p->tok, digits, sizeof digits);
-        return read_fail(p, &p->tok, "%s %s is too large (at most %u)", noun,
-                       digits, INT_LIMIT);
-    }
-    if (k != UINT_OK || *v < min)
-        return fail_expected(p, what);
-    next(p);
-    return 0;
-}
-
-/* read_int, with values above max reported as too large. */
-static int read_int_at_most(struct scene_reader *p, uint32_t min, uint32_t max,
-                            const char *what, const char *noun, uint32_t *v)
-{
-    struct token at = p->tok;
-    if (read_int(p, min, what, noun, v))
-        return -1;
-    if (*v > max)
-        return read_fail(p, &at, "%s %u is too large (at most %u)", noun, *v, max);
-    return 0;
-}
-
-int read_integer(struct scene_reader *p, size_t min, size_t max,
-                 const char *what, const char *noun, size_t *v)
-{
-    uint32_t u = 0;
-    uint32_t lo = min > INT_LIMIT ? INT_LIMIT : (uint32_t)min;
-    uint32_t hi = max > INT_LIMIT ? INT_LIMIT : (uint32_t)max;
-    if (read_int_at_most(p, lo, hi, what, noun, &u))
-        return -1;
-    *v = u;
-    return 0;
-}
-
-static int read_count(struct scene_reader *p, size_t *n)
-{
-    uint32_t v = 0;
-    if (read_int(p, 0, "a non-negative integer count", "count", &v))
-        return -1;
-    *n = v;
-    return 0;
-}
-
-/* Reads an index into a list of n things called one/many ("pigment",
- * "pigments"); *at (may be NULL) gets its token. */
-static int read_index(struct scene_reader *p, const char *one, const char *many,
-                      size_t n, size_t *idx, struct token *at)
-{
-    uint32_t v = 0;
-    enum uint_kind k = token_uint(&p->tok, &v);
-    if (at)
-        *at = p->tok;
-    if (k == UINT_NOT) {
-        char what[64];
-        snprintf(what, sizeof what, "a non-negative integer %s index", one);
-        return fail_expected(p, what);
-    }
-    if (k == UINT_TOO_BIG || v >= n) {
-        char digits[48];
-        digits_text(&p->tok, digits, sizeof digits);
-        return read_fail(p, &p->tok, "%s index %s is out of range (%zu %s)",
-                       one, digits, n, n == 1 ? one : many);
-    }
-    *idx = v;
-    next(p);
-    return 0;
-}
-
-/* Grows an array to hold at least need entries, doubling, so a count in
- * the file never decides an allocation by itself. Returns the (possibly
- * moved) array, or NULL when out of memory (arr is then still valid). */
-static void *grow(struct scene_reader *p, void *arr, size_t *cap, size_t need,
-                  size_t elem)
-{
-    if (need <= *cap)
-        return arr;
-    size_t ncap = *cap ? *cap : 8;
-    while (ncap < need && ncap <= SIZE_MAX / 2)
-        ncap *= 2;
-    if (ncap < need || ncap > SIZE_MAX / elem) {
-        fail_oom(p);
-        return NULL;
-    }
-    void *bigger = big_realloc(arr, ncap * elem);
-    if (!bigger) {
-        fail_oom(p);
-        return NULL;
-    }
-    *cap = ncap;
-    return bigger;
-}
-
-/* Keeps the scene's largest length and where it was written (scene.h:
- * max_length; main.c checks it against scene_length_limit). */
-static void note_length(struct scene_reader *p, const struct token *at,
-                        double v, const char *what)
-{
-    if (fabs(v) > p->s.max_length) {
-        p->s.max_length = fabs(v);
-        p->s.max_length_line = at->line;
-        p->s.max_length_col = at->col;
-        p->s.max_length_what = what;
-    }
-}
-
-static void note_lengths(struct scene_reader *p, const struct token *at,
-                         const double v[3], const char *what)
-{
-    for (int i = 0; i < 3; i++)
-        note_length(p, at, v[i], what);
-}
-
-struct scene *read_scene(struct scene_reader *p)
-{
-    return &p->s;
-}
-
-const struct token *read_peek(const struct scene_reader *p)
-{
-    return &p->tok;
-}
-
-int read_push(struct scene_reader *p, const double *v, size_t n)
-{
-    struct scene *s = &p->s;
-    void *a = grow(p, s->reals, &p->cap_reals, s->nreals + n, sizeof *s->reals);
-    if (!a)
-        return -1;
-    s->reals = a;
-    memcpy(s->reals + s->nreals, v, n * sizeof *v);
-    s->nreals += n;
-    return 0;
-}
-
-int read_file_name(struct scene_reader *p, const char *what, char **path,
-                   struct token *at)
-{
-    lexer_rescan_word(&p->lx, &p->tok);
-    *at = p->tok;
-    if (p->tok.kind != TOKEN_WORD)
-        return read_expected(p, &p->tok, what);
-    size_t dir = p->tok.text[0] == '/' ? 0 : strlen(p->dir) + 1;
-    *path = malloc(dir + p->tok.len + 1);
-    if (!*path)
-        return fail_oom(p);
-    if (dir) {
-        memcpy(*path, p->dir, dir - 1);
-        (*path)[dir - 1] = '/';
-    }
-    memcpy(*path + dir, p->tok.text, p->tok.len);
-    (*path)[dir + p->tok.len] = '\0';
-    next(p);
-    return 0;
-}
-
-/* The folder of the file called name: what comes before its last '/',
- * "/" for a file in the root, "." for a bare name. NULL when out of
- * memory. */
-static char *folder_of(const char *name)
-{
-    const char *slash = strrchr(name, '/');
-    size_t n = !slash ? 1 : slash == name ? 1 : (size_t)(slash - name);
-    char *dir = malloc(n + 1);
-    if (dir) {
-        memcpy(dir, !slash ? "." : name, n);
-        dir[n] = '\0';
-    }
-    return dir;
-}
 
 /* ---- camera ------------------------------------------------------------ */
 
@@ -355,7 +33,7 @@ static int parse_header(struct scene_reader *p)
     uint32_t w = 0, h = 0;
     if (p->tok.kind != TOKEN_WORD)
         return 0;
-    next(p);
+    read_next(p);
     struct token w_at = p->tok;
     if (read_int(p, 1, "a positive integer image width", "image width", &w))
         return -1;
@@ -410,7 +88,7 @@ static int parse_camera(struct scene_reader *p)
     if (read_numbers(p, s->eye, 3, &eye_at) ||
         read_numbers(p, s->center, 3, &center_at))
         return -1;
-    note_lengths(p, &eye_at, s->eye, "camera eye");
+    read_note_lengths(p, &eye_at, s->eye, "camera eye");
     if (s->eye[0] == s->center[0] && s->eye[1] == s->center[1] &&
         s->eye[2] == s->center[2])
         return read_fail(p, &center_at, "center must differ from eye");
@@ -437,7 +115,7 @@ static int parse_light(struct scene_reader *p, struct scene_light *l, int ambien
     if (read_numbers(p, l->pos, 3, &at) || read_numbers(p, l->color, 3, NULL))
         return -1;
     if (!ambient)
-        note_lengths(p, &at, l->pos, "light position");
+        read_note_lengths(p, &at, l->pos, "light position");
     for (int i = 0; i < 3; i++)
         if (read_bounded(p, &l->att[i], 1,
                          "a non-negative attenuation coefficient"))
@@ -452,7 +130,7 @@ static int parse_lights(struct scene_reader *p)
     if (read_count(p, &n))
         return -1;
     for (size_t i = 0; i < n; i++) {
-        void *a = grow(p, s->lights, &p->cap_lights, i + 1, sizeof *s->lights);
+        void *a = read_grow(p, s->lights, &p->cap_lights, i + 1, sizeof *s->lights);
         if (!a)
             return -1;
         s->lights = a;
@@ -468,12 +146,12 @@ static int parse_lights(struct scene_reader *p)
 static int parse_pigment(struct scene_reader *p, struct scene_pigment *pg)
 {
     for (int k = 0; k < PIGMENT_COUNT; k++)
-        if (is_word(&p->tok, pigment_kinds[k].keyword)) {
-            next(p);
+        if (read_is_word(&p->tok, pigment_kinds[k].keyword)) {
+            read_next(p);
             pg->kind = k;
             return pigment_kinds[k].read(p, pg);
         }
-    return fail_expected(p, pigment_keywords());
+    return read_fail_expected(p, pigment_keywords());
 }
 
 static int parse_pigments(struct scene_reader *p)
@@ -483,7 +161,7 @@ static int parse_pigments(struct scene_reader *p)
     if (read_count(p, &n))
         return -1;
     for (size_t i = 0; i < n; i++) {
-        void *a = grow(p, s->pigments, &p->cap_pigments, i + 1,
+        void *a = read_grow(p, s->pigments, &p->cap_pigments, i + 1,
                        sizeof *s->pigments);
         if (!a)
             return -1;
@@ -526,7 +204,7 @@ static int parse_finishes(struct scene_reader *p)
     if (read_count(p, &n))
         return -1;
     for (size_t i = 0; i < n; i++) {
-        void *a = grow(p, s->finishes, &p->cap_finishes, i + 1,
+        void *a = read_grow(p, s->finishes, &p->cap_finishes, i + 1,
                        sizeof *s->finishes);
         if (!a)
             return -1;
@@ -551,9 +229,9 @@ static int parse_object(struct scene_reader *p, struct scene_object *o)
         read_index(p, "finish", "finishes", s->nfinishes, &o->finish, NULL))
         return -1;
     for (int k = 0; k < SHAPE_COUNT; k++)
-        if (is_word(&p->tok, shape_kinds[k].keyword)) {
+        if (read_is_word(&p->tok, shape_kinds[k].keyword)) {
             struct token at = p->tok;
-            next(p);
+            read_next(p);
             o->kind = k;
             o->first = s->nreals;
             int rc = shape_kinds[k].read(p);
@@ -562,11 +240,11 @@ static int parse_object(struct scene_reader *p, struct scene_object *o)
                 return rc;
             double extent = shape_extent(k, s->reals + o->first, o->count);
             if (extent < 0)
-                return fail_oom(p);
-            note_length(p, &at, extent, shape_kinds[k].keyword);
+                return read_fail_oom(p);
+            read_note_length(p, &at, extent, shape_kinds[k].keyword);
             return 0;
         }
-    return fail_expected(p, shape_keywords());
+    return read_fail_expected(p, shape_keywords());
 }
 
 static int parse_objects(struct scene_reader *p)
@@ -576,7 +254,7 @@ static int parse_objects(struct scene_reader *p)
     if (read_count(p, &n))
         return -1;
     for (size_t i = 0; i < n; i++) {
-        void *a = grow(p, s->objects, &p->cap_objects, i + 1,
+        void *a = read_grow(p, s->objects, &p->cap_objects, i + 1,
                        sizeof *s->objects);
         if (!a)
             return -1;
@@ -608,7 +286,7 @@ static int parse_lens(struct scene_reader *p)
     if (read_bounded(p, &p->s.lens_radius, 1, "a non-negative lens radius") ||
         read_bounded(p, &p->s.lens_focal, 0, "a positive focal distance"))
         return -1;
-    note_length(p, &at, fmax(p->s.lens_radius, p->s.lens_focal), "lens");
+    read_note_length(p, &at, fmax(p->s.lens_radius, p->s.lens_focal), "lens");
     p->s.has_lens = 1;
     return 0;
 }
@@ -639,7 +317,7 @@ static int parse_arealight(struct scene_reader *p)
         read_int_at_most(p, 1, TP2_MAX_SAMPLES, "a positive integer sample count",
                          "sample count", &n))
         return -1;
-    note_length(p, &radius_at, s->arealight_radius, "area light radius");
+    read_note_length(p, &radius_at, s->arealight_radius, "area light radius");
     s->has_arealight = 1;
     s->arealight_samples = (int)n;
     return 0;
@@ -666,10 +344,10 @@ static int parse_directives(struct scene_reader *p)
     int seen[NDIRECTIVES] = { 0 };
     while (p->tok.kind != TOKEN_EOF) {
         size_t i = 0;
-        while (i < NDIRECTIVES && !is_word(&p->tok, directives[i].name))
+        while (i < NDIRECTIVES && !read_is_word(&p->tok, directives[i].name))
             i++;
         if (i == NDIRECTIVES)
-            return fail_expected(p, "'samples', 'lens', 'fog', 'arealight' "
+            return read_fail_expected(p, "'samples', 'lens', 'fog', 'arealight' "
                                     "or end of file");
         if (seen[i])
             return read_fail(p, &p->tok, "duplicate '%s' directive (first at "
@@ -677,7 +355,7 @@ static int parse_directives(struct scene_reader *p)
                            first[i].line, first[i].col);
         seen[i] = 1;
         first[i] = p->tok;
-        next(p);
+        read_next(p);
         if (directives[i].parse(p))
             return -1;
     }
@@ -696,28 +374,10 @@ static int parse_scene(struct scene_reader *p)
     return 0;
 }
 
-/* Sets up p to read a scene called name (NULL: "<input>") into out, with
- * messages to err; -1 when out of memory (reported). */
-static int reader_begin(struct scene_reader *p, const char *name,
-                        struct scene *out, char *err, size_t errsize)
-{
-    memset(p, 0, sizeof *p);
-    memset(out, 0, sizeof *out);
-    p->name = name ? name : "<input>";
-    p->err = err;
-    p->errsize = errsize;
-    if (err && errsize > 0)
-        err[0] = '\0';
-    p->shown_copy = lexer_escape(p->name);
-    p->shown = p->shown_copy ? p->shown_copy : "?";
-    p->dir = folder_of(p->name);
-    return p->shown_copy && p->dir ? 0 : fail_oom(p);
-}
-
 /* Parses what p's lexer gives, then frees p. */
 static int reader_run(struct scene_reader *p, struct scene *out)
 {
-    next(p);
+    read_next(p);
     int rc = parse_scene(p);
     if (rc == 0)
         *out = p->s;
@@ -726,23 +386,16 @@ static int reader_run(struct scene_reader *p, struct scene *out)
     return rc;
 }
 
-static void reader_end(struct scene_reader *p)
-{
-    lexer_free(&p->lx);
-    free(p->dir);
-    free(p->shown_copy);
-}
-
 int scene_parse_text(const char *name, const char *text, size_t len,
                      struct scene *out, char *err, size_t errsize)
 {
     struct scene_reader p;
-    int rc = reader_begin(&p, name, out, err, errsize);
+    int rc = read_begin(&p, name, out, err, errsize);
     if (rc == 0 && lexer_init_text(&p.lx, text, len) != 0)
-        rc = fail_oom(&p);
+        rc = read_fail_oom(&p);
     if (rc == 0)
         rc = reader_run(&p, out);
-    reader_end(&p);
+    read_end(&p);
     return rc;
 }
 
@@ -751,9 +404,9 @@ int scene_parse_file(const char *path, struct scene *out, char *err,
                      size_t errsize)
 {
     struct scene_reader p;
-    int rc = reader_begin(&p, path, out, err, errsize);
+    int rc = read_begin(&p, path, out, err, errsize);
     if (rc != 0) {
-        reader_end(&p);
+        read_end(&p);
         return rc;
     }
     errno = 0;
@@ -761,7 +414,7 @@ int scene_parse_file(const char *path, struct scene *out, char *err,
     if (!f || lexer_init_file(&p.lx, f) != 0) {
         int saved = errno ? errno : EIO;
         if (saved == ENOMEM)
-            fail_oom(&p);
+            read_fail_oom(&p);
         else if (err && errsize > 0)
             snprintf(err, errsize, "tp2: cannot read '%s': %s", p.shown,
                      strerror(saved));
@@ -769,7 +422,7 @@ int scene_parse_file(const char *path, struct scene *out, char *err,
     } else {
         rc = reader_run(&p, out);
     }
-    reader_end(&p);
+    read_end(&p);
     if (f)
         fclose(f);
     return rc;

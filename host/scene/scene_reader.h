@@ -1,7 +1,7 @@
 /* scene_reader.h: what the tables of shapes.c and pigments.c read their
  * parameters with.
  *
- * The reader is scene_parse.c's state: it looks one token ahead, and every
+ * The reader (scene_reader.c) looks one token ahead, and every
  * function here reports a failure itself, as one message
  * "FILE:LINE:COL: error: ..." at the token that caused it, and returns -1.
  * Nothing is printed; scene_parse_text hands the message to its caller. */
