@@ -16,6 +16,7 @@ set(TP2_BASE_SOURCES
 set(TP2_SCENE_SOURCES
   ${TP2_HOST}/scene/convex.c
   ${TP2_HOST}/scene/decimal.c
+  ${TP2_HOST}/scene/json_write.c
   ${TP2_HOST}/scene/lexer.c
   ${TP2_HOST}/scene/obj_read.c
   ${TP2_HOST}/scene/pigments.c

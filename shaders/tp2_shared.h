@@ -100,6 +100,20 @@
 #define TP2_SIG_SHADOW_LOW 0x02000000u /* SHADOWS' lowest bit */
 #define TP2_SIG_HASH 0x01ffffffu
 
+/* What counts (frame.limits.y and .w; host/render/retrace.h marks): a
+ * boundary between two pixels of different hashes is traced again where
+ * rounding may move it by at least
+ * TP2_SIG_PIXELS of a pixel (to move it across a pixel's center it would
+ * have to pass within that distance of it; with S samples per pixel,
+ * TP2_SIG_PIXELS / S, and a tenth of that where rounding known to be
+ * close to float's error moves it, a ray's own or a hit's fresh
+ * rounding: signature.glsl's seen); a decision counts where
+ * flipping it could change the pixel by TP2_SIG_STAKE or more (one 8-bit
+ * level, for radiance within [0, 1]). README.TXT "Accuracy" has the
+ * measurements that chose them. */
+#define TP2_SIG_PIXELS 0.1
+#define TP2_SIG_STAKE (1.0 / 255.0)
+
 /* Ray counters in the stats buffer, by kind. */
 #define TP2_STAT_CAMERA 0
 #define TP2_STAT_SHADOW 1

@@ -15,7 +15,6 @@
 #include "float_exact.h"
 #include "gpu_layout.h"
 #include "pigments.h"
-#include "retrace.h"
 #include "shapes.h"
 #include "twins.h"
 #include "vec3.h"

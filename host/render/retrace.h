@@ -19,18 +19,8 @@
                                              * saw shadowed, where that counts */
 #define RETRACE_HASH TP2_SIG_HASH
 
-/* What counts (frame.limits.y and .w): a boundary between two pixels of
- * different hashes is traced again where rounding may move it by at least
- * RETRACE_PIXELS of a pixel (to move it across a pixel's center it would
- * have to pass within that distance of it; with S samples per pixel,
- * RETRACE_PIXELS / S, and a tenth of that where rounding known to be
- * close to float's error moves it, a ray's own or a hit's fresh
- * rounding: signature.glsl's seen); a decision counts where
- * flipping it could change the pixel by RETRACE_STAKE or more (one 8-bit
- * level, for radiance within [0, 1]). README.TXT "Accuracy" has the
- * measurements that chose them. */
-#define RETRACE_PIXELS 0.1
-#define RETRACE_STAKE (1.0 / 255.0)
+/* What counts is TP2_SIG_PIXELS and TP2_SIG_STAKE (tp2_shared.h), which
+ * scene_pack.c hands the shader in frame.limits.y and .w. */
 
 /* A pixel is traced again in double where it is UNSURE, or where its hash
  * differs from one of its eight neighbours' and one of the two is

@@ -20,7 +20,7 @@
 #include <string.h>
 
 #include "float_exact.h"
-#include "scene_json.h"
+#include "json_write.h"
 #include "texture.h"
 #include "tp2_shared.h"
 #include "vec3.h"

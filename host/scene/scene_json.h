@@ -25,9 +25,4 @@
  * Returns 0, or -1 if writing failed. */
 int scene_write_json(const struct scene *s, FILE *out);
 
-/* Helpers for the tables' own JSON fields: `"key": [v0, v1, ...]`, and a
- * string with quotes, backslashes and control characters escaped. */
-void json_numbers(FILE *out, const char *key, const double *v, size_t n);
-void json_string(FILE *out, const char *s);
-
 #endif
