@@ -167,24 +167,8 @@
  * tested through the BVH as by a plain loop. */
 #define TP2_EDGE_REACH (1.0 / 4096.0)
 
-/* Pigment kinds (Pigment.kind.x); host/scene/pigments.c maps keywords to them
- * and shaders/pigments.glsl colors each. */
-#define TP2_PIGMENT_SOLID 0
-#define TP2_PIGMENT_CHECKER 1
-#define TP2_PIGMENT_GRADIENT 2
-#define TP2_PIGMENT_TEXMAP 3
-
-/* Shape kinds (Object.ids.x); host/scene/shapes.c maps keywords to them (a mesh
- * is triangles) and shaders/shapes.glsl intersects each. */
-#define TP2_SHAPE_SPHERE 0
-#define TP2_SHAPE_PLANE 1
-#define TP2_SHAPE_POLYHEDRON 2
-#define TP2_SHAPE_BOX 3
-#define TP2_SHAPE_CYLINDER 4
-#define TP2_SHAPE_CONE 5
-#define TP2_SHAPE_TORUS 6
-#define TP2_SHAPE_QUADRIC 7
-#define TP2_SHAPE_TRIANGLE 8
+/* Shape and pigment kinds and their GPU ids (TP2_SHAPE_*, TP2_PIGMENT_*)
+ * are in kinds.h. */
 
 /* Object.ids.x holds the shape kind in its low bits and, above them, this
  * flag: some number of a flat object's record or extra rows is not a

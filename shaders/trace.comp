@@ -11,6 +11,7 @@
 #extension GL_EXT_samplerless_texture_functions : require // texelFetch of a utextureBuffer
 
 #include "tp2_shared.h"
+#include "kinds.h"
 
 #include "real.glsl"
 #include "layout.glsl"

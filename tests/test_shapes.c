@@ -626,8 +626,27 @@ static void test_moved_records(void)
           ref[0][2] == was[2] - o[2]);
 }
 
+/* The table follows kinds.h: a flat kind lists its faces (twins.h needs
+ * them), a curved one has none; every GPU id is one the shader knows. */
+static void test_kind_table(void)
+{
+    for (int k = 0; k < SHAPE_COUNT; k++) {
+        const struct shape_kind *kind = &shape_kinds[k];
+        expect(kind->flat == (kind->faces != NULL), "%s: flat is %d but faces %s",
+               kind->keyword, kind->flat, kind->faces ? "listed" : "NULL");
+        expect(!kind->met_as_planes || kind->flat, "%s: met as planes but not flat",
+               kind->keyword);
+        expect(kind->gpu_kind >= 0 && kind->gpu_kind < TP2_GPU_SHAPES,
+               "%s: GPU id %d", kind->keyword, kind->gpu_kind);
+        expect(kind->tier >= TP2_TIER_BASIC && kind->tier < TP2_TIERS, "%s: tier %d",
+               kind->keyword, kind->tier);
+    }
+    CHECK(shape_kinds[SHAPE_MESH].gpu_kind == TP2_SHAPE_TRIANGLE);
+}
+
 int main(void)
 {
+    test_kind_table();
     test_round_bounds();
     test_quadric_bounds();
     test_convex_bounds();

@@ -21,6 +21,7 @@
 #define SPV_ENABLE_UTILITY_CODE
 #include <spirv/unified1/spirv.h>
 
+#include "kinds.h"
 #include "specialize_probe_spv.h"
 #include "spirv_specialize.h"
 #include "tp2_shared.h"

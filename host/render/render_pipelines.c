@@ -12,6 +12,7 @@
 #include "env.h"
 #include "finish_spv.h"
 #include "gpu_layout.h"
+#include "kinds.h"
 #include "pipeline_cache.h"
 #include "spirv_exact.h"
 #include "spirv_fused.h"
@@ -61,19 +62,17 @@ static void spec_values(const struct renderer *r, const struct tracer *t, int wa
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }
 
-/* The kinds a SPIR-V build has (CMakeLists.txt): spheres and planes; and
- * the faceted kinds; and the curved kinds as well. */
-enum kind_tier { TIER_BASIC, TIER_FACETED, TIER_CURVED, KIND_TIERS };
-
-/* The least tier that has every kind the scene uses. */
-static enum kind_tier kind_tier(const struct scene_features *f)
+/* The least tier (kinds.h, TP2_TIER_*: which SPIR-V build) that has every
+ * kind the scene uses. */
+static int kind_tier(const struct scene_features *f)
 {
-    if (f->shapes & (1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE | 1 << TP2_SHAPE_TORUS |
-                     1 << TP2_SHAPE_QUADRIC))
-        return TIER_CURVED;
-    if (f->shapes & (1 << TP2_SHAPE_TRIANGLE | 1 << TP2_SHAPE_BOX | 1 << TP2_SHAPE_POLYHEDRON))
-        return TIER_FACETED;
-    return TIER_BASIC;
+    int tier = TP2_TIER_BASIC;
+#define TP2_TIER_OF_(NAME, keyword, id, kind_tier, flat)                      \
+    if ((f->shapes >> id & 1) && TP2_TIER_##kind_tier > tier)                  \
+        tier = TP2_TIER_##kind_tier;
+    TP2_SHAPES(TP2_TIER_OF_)
+#undef TP2_TIER_OF_
+    return tier;
 }
 
 /* Whether TP2_FUSED=1 asks for the shaders to round as a device that
@@ -87,7 +86,7 @@ bool fused_requested(void)
 static const struct {
     const uint32_t *code;
     size_t size;
-} builds[2][KIND_TIERS] = {
+} builds[2][TP2_TIERS] = {
     {{tp2_trace_float_basic, sizeof tp2_trace_float_basic},
      {tp2_trace_float, sizeof tp2_trace_float},
      {tp2_trace_float_curved, sizeof tp2_trace_float_curved}},
@@ -153,7 +152,7 @@ static size_t rewrite(struct tracer *t,
 /* Each pass's SPIR-V, of its precision and the kinds the scene needs. */
 static int choose_code(struct renderer *r)
 {
-    enum kind_tier tier = kind_tier(&r->features);
+    int tier = kind_tier(&r->features);
     struct tracer *passes[2];
     bool fused = fused_requested();
     if (fused && !r->vk.float64) {

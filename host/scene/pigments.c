@@ -214,16 +214,15 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
     json_numbers(out, "t", pg->t, 4);
 }
 
-const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
-    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, unmoved,
-                       solid_json, NULL},
-    [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack,
-                         checker_move, checker_json, NULL},
-    [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
-                          gradient_move, gradient_json, gradient_slope},
-    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_move,
-                        texmap_json, texmap_slope},
-};
+/* Each kind's functions, in struct pigment_kind's order after the fields
+ * kinds.h gives: KEYWORD_OPS for each row of TP2_PIGMENTS. */
+#define solid_OPS solid_read, solid_pack, unmoved, solid_json, NULL
+#define checker_OPS checker_read, checker_pack, checker_move, checker_json, NULL
+#define gradient_OPS gradient_read, gradient_pack, gradient_move, gradient_json, gradient_slope
+#define texmap_OPS texmap_read, texmap_pack, texmap_move, texmap_json, texmap_slope
+
+#define TP2_PIGMENT_ROW_(NAME, keyword, id) [PIGMENT_##NAME] = {#keyword, id, keyword##_OPS},
+const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {TP2_PIGMENTS(TP2_PIGMENT_ROW_)};
 
 const char *pigment_keywords(void)
 {

@@ -3,22 +3,20 @@
  * An entry says how the kind is written (keyword and reader, with
  * positioned errors), what it is on the GPU (TP2_PIGMENT_*, whose color
  * function lives in shaders/pigments.glsl) and how it packs into the GPU
- * pigment record. */
+ * pigment record. The kinds, their keywords and GPU ids are listed in
+ * shaders/kinds.h (docs/adding-a-kind.md). */
 #ifndef TP2_PIGMENTS_H
 #define TP2_PIGMENTS_H
 
 #include <stdio.h>
 
+#include "kinds.h"
 #include "scene_reader.h"
 
-/* Host kinds; scene_pigment.kind holds one. */
-enum pigment {
-    PIGMENT_SOLID,
-    PIGMENT_CHECKER,
-    PIGMENT_GRADIENT,
-    PIGMENT_TEXMAP,
-    PIGMENT_COUNT
-};
+/* Host kinds, in kinds.h's order; scene_pigment.kind holds one. */
+#define TP2_PIGMENT_ENUM_(NAME, keyword, id) PIGMENT_##NAME,
+enum pigment { TP2_PIGMENTS(TP2_PIGMENT_ENUM_) PIGMENT_COUNT };
+#undef TP2_PIGMENT_ENUM_
 
 /* One pigment as the GPU record holds it (layout.glsl's Pigment), in
  * double until packing. */
@@ -30,8 +28,10 @@ struct pigment_record {
 };
 
 struct pigment_kind {
+    /* From kinds.h. */
     const char *keyword;
     int gpu_kind; /* TP2_PIGMENT_* */
+    /* From the kind's KEYWORD_OPS in pigments.c: */
     /* Reads what follows the keyword into pg, each parameter checked with
      * a positioned error; a texmap decodes its image into the scene's
      * textures. 0 or -1. */

@@ -708,36 +708,43 @@ static int mesh_read(struct scene_reader *r)
 
 /* ---- the table --------------------------------------------------------- */
 
-const struct shape_kind shape_kinds[SHAPE_COUNT] = {
-    [SHAPE_SPHERE] = {"sphere", TP2_SHAPE_SPHERE, sphere_read, one_primitive,
-                      sphere_bounds, no_extra, sphere_pack, move_first_row,
-                      .faces = NULL},
-    [SHAPE_PLANE] = {"plane", TP2_SHAPE_PLANE, plane_read, one_primitive, unbounded,
-                     no_extra, plane_pack, plane_move, .faces = plane_faces,
-                     .met_as_planes = true},
-    [SHAPE_POLYHEDRON] = {"polyhedron", TP2_SHAPE_POLYHEDRON, polyhedron_read,
-                          one_primitive, polyhedron_bounds, polyhedron_extra,
-                          polyhedron_pack, polyhedron_move, .faces = polyhedron_faces,
-                          .met_as_planes = true},
-    [SHAPE_BOX] = {"box", TP2_SHAPE_BOX, box_read, one_primitive, box_bounds, no_extra,
-                   box_pack, box_move, .faces = box_faces, .met_as_planes = true},
-    [SHAPE_CYLINDER] = {"cylinder", TP2_SHAPE_CYLINDER, cylinder_read, one_primitive,
-                        cylinder_bounds, no_extra, cylinder_pack, move_first_row,
-                        .faces = NULL},
-    [SHAPE_CONE] = {"cone", TP2_SHAPE_CONE, cone_read, one_primitive, cone_bounds,
-                    no_extra, cone_pack, move_first_row, .faces = NULL},
-    [SHAPE_TORUS] = {"torus", TP2_SHAPE_TORUS, torus_read, one_primitive, torus_bounds,
-                     no_extra, torus_pack, move_first_row, .faces = NULL},
-    [SHAPE_QUADRIC] = {"quadric", TP2_SHAPE_QUADRIC, quadric_read, one_primitive,
-                       quadric_bounds, quadric_extra, quadric_pack, quadric_move,
-                       .faces = NULL},
-    [SHAPE_TRIANGLE] = {"triangle", TP2_SHAPE_TRIANGLE, triangle_read, triangle_count,
-                        triangle_bounds, no_extra, triangle_pack, triangle_move,
-                        .faces = triangle_faces, .met_as_planes = false},
-    [SHAPE_MESH] = {"mesh", TP2_SHAPE_TRIANGLE, mesh_read, triangle_count,
-                    triangle_bounds, no_extra, triangle_pack, triangle_move,
-                    .faces = triangle_faces, .met_as_planes = false},
-};
+/* Each kind's functions, in struct shape_kind's order after the fields
+ * kinds.h gives: KEYWORD_OPS for each row of TP2_SHAPES. */
+#define sphere_OPS \
+    sphere_read, one_primitive, sphere_bounds, \
+    no_extra, sphere_pack, move_first_row, .faces = NULL
+#define plane_OPS \
+    plane_read, one_primitive, unbounded, \
+    no_extra, plane_pack, plane_move, .faces = plane_faces, .met_as_planes = true
+#define polyhedron_OPS \
+    polyhedron_read, one_primitive, polyhedron_bounds, \
+    polyhedron_extra, polyhedron_pack, polyhedron_move, \
+    .faces = polyhedron_faces, .met_as_planes = true
+#define box_OPS \
+    box_read, one_primitive, box_bounds, \
+    no_extra, box_pack, box_move, .faces = box_faces, .met_as_planes = true
+#define cylinder_OPS \
+    cylinder_read, one_primitive, cylinder_bounds, \
+    no_extra, cylinder_pack, move_first_row, .faces = NULL
+#define cone_OPS \
+    cone_read, one_primitive, cone_bounds, \
+    no_extra, cone_pack, move_first_row, .faces = NULL
+#define torus_OPS \
+    torus_read, one_primitive, torus_bounds, \
+    no_extra, torus_pack, move_first_row, .faces = NULL
+#define quadric_OPS \
+    quadric_read, one_primitive, quadric_bounds, \
+    quadric_extra, quadric_pack, quadric_move, .faces = NULL
+#define triangle_OPS \
+    triangle_read, triangle_count, triangle_bounds, \
+    no_extra, triangle_pack, triangle_move, .faces = triangle_faces, .met_as_planes = false
+#define mesh_OPS \
+    mesh_read, triangle_count, triangle_bounds, \
+    no_extra, triangle_pack, triangle_move, .faces = triangle_faces, .met_as_planes = false
+
+#define TP2_SHAPE_ROW_(NAME, keyword, id, tier, flat)                         \
+    [SHAPE_##NAME] = {#keyword, id, TP2_TIER_##tier, flat, keyword##_OPS},
+const struct shape_kind shape_kinds[SHAPE_COUNT] = {TP2_SHAPES(TP2_SHAPE_ROW_)};
 
 double shape_extent(int k, const double *p, size_t n)
 {

@@ -4,29 +4,21 @@
  * positioned error for each bad parameter), what it becomes on the GPU
  * (TP2_SHAPE_*, whose hit_ and surface_ functions live in
  * shaders/shapes.glsl), its bounds (or none), and how it packs into the
- * GPU object record. A new kind is one entry here and its GLSL functions. */
+ * GPU object record. The kinds themselves, their keywords, GPU ids and
+ * tiers are listed in shaders/kinds.h (docs/adding-a-kind.md). */
 #ifndef TP2_SHAPES_H
 #define TP2_SHAPES_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "kinds.h"
 #include "scene_reader.h"
 
-/* Host kinds, in keyword order; scene_object.kind holds one. */
-enum shape {
-    SHAPE_SPHERE,
-    SHAPE_PLANE,
-    SHAPE_POLYHEDRON,
-    SHAPE_BOX,
-    SHAPE_CYLINDER,
-    SHAPE_CONE,
-    SHAPE_TORUS,
-    SHAPE_QUADRIC,
-    SHAPE_TRIANGLE,
-    SHAPE_MESH,
-    SHAPE_COUNT
-};
+/* Host kinds, in kinds.h's order; scene_object.kind holds one. */
+#define TP2_SHAPE_ENUM_(NAME, keyword, id, tier, flat) SHAPE_##NAME,
+enum shape { TP2_SHAPES(TP2_SHAPE_ENUM_) SHAPE_COUNT };
+#undef TP2_SHAPE_ENUM_
 
 /* One primitive as the GPU object record holds it (shaders/layout.glsl's
  * Object): three rows of four numbers, in double until packing, and how
@@ -37,8 +29,12 @@ struct shape_record {
 };
 
 struct shape_kind {
+    /* From kinds.h. */
     const char *keyword;
     int gpu_kind; /* TP2_SHAPE_* */
+    int tier;     /* TP2_TIER_* */
+    bool flat;    /* faces is not NULL */
+    /* From the kind's KEYWORD_OPS in shapes.c: */
     /* Reads what follows the keyword, pushing the object's numbers
      * (read_push), each checked with a positioned error. 0 or -1. */
     int (*read)(struct scene_reader *r);
