@@ -124,8 +124,10 @@ def make_pigment(p):
         return Checker(tuple(p["color1"]), tuple(p["color2"]), p["side"])
     if p["kind"] == "gradient":
         return Gradient(tuple(p["p0"]), tuple(p["p1"]), tuple(p["color0"]), tuple(p["color1"]))
-    return Texmap(p["width"], p["height"], tuple(p["s"]), tuple(p["t"]),
-                  read_ppm_texels(p["file"]))
+    if p["kind"] == "texmap":
+        return Texmap(p["width"], p["height"], tuple(p["s"]), tuple(p["t"]),
+                      read_ppm_texels(p["file"]))
+    raise ValueError(f"reference.py has no model of the pigment kind {p['kind']!r}")
 
 
 def plane_of(a, b, c, d):
@@ -155,9 +157,10 @@ def make_objects(o):
         return [Torus(pg, fi, tuple(v[:3]), unit(tuple(v[3:6])), v[6], v[7])]
     if kind == "quadric":
         return [Quadric(pg, fi, tuple(v))]
-    # triangle, mesh: 9 numbers per triangle
-    return [Triangle(pg, fi, tuple(v[k:k + 3]), tuple(v[k + 3:k + 6]), tuple(v[k + 6:k + 9]))
-            for k in range(0, len(v), 9)]
+    if kind in ("triangle", "mesh"):  # 9 numbers per triangle
+        return [Triangle(pg, fi, tuple(v[k:k + 3]), tuple(v[k + 3:k + 6]),
+                         tuple(v[k + 6:k + 9])) for k in range(0, len(v), 9)]
+    raise ValueError(f"reference.py has no model of the shape kind {kind!r}")
 
 
 def load(tp2, path):
