@@ -26,8 +26,3 @@ def pigments(root=ROOT):
     path = os.path.join(root, "shaders", "kinds.h")
     return [Pigment(n, k, int(i)) for n, k, i in _rows("TP2_PIGMENTS", path)]
 
-
-def keyword_list(words):
-    """As tp2's messages list them: "'a', 'b' or 'c'"."""
-    quoted = ["'%s'" % w for w in words]
-    return ", ".join(quoted[:-1]) + " or " + quoted[-1]
