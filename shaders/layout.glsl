@@ -120,7 +120,7 @@ layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
-// TP2_SHAPE_*): code for kinds it does not use is compiled out.
+// TP2_SHAPE_*: kinds.h): code for kinds it does not use is compiled out.
 #define USES_PIGMENT(k) ((PIGMENT_KINDS & (1 << (k))) != 0)
 #define USES_SHAPE(k) ((SHAPE_KINDS & (1 << (k))) != 0)
 
