@@ -1,10 +1,12 @@
 # tp2's host sources, one list per stage, in the order a render runs
-# through them: a lower stage never includes a later stage's header.
+# through them: a stage never includes a later stage's header nor calls
+# its functions, and no files call each other round a circle (the test
+# host_layers, tests/check_layers.py, whose list of stages is this one).
 #   base    allocation, clocks, temporary files, small maths (no tp2 types)
 #   scene   scene text -> struct scene: lexer, reader, parser, kind tables
 #   pack    struct scene -> the GPU's buffers: records, BVH, twins
 #   gpu     the Vulkan device: context, buffers, pipeline cache, SPIR-V
-#   render  the passes over the device: pipelines, bands, retrace
+#   render  the passes over the device: pipelines, bands, retrace, progress
 #   write   the image file
 #   app     main, the command line and its help text
 # base, scene and pack need no Vulkan (the fuzz build uses them alone).
