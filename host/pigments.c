@@ -215,24 +215,28 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
 }
 
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {
-    [PIGMENT_SOLID] = {"solid", TP2_PIGMENT_SOLID, solid_read, solid_pack, unmoved,
+    [PIGMENT_SOLID] = {"solid", NULL, TP2_PIGMENT_SOLID, solid_read, solid_pack, unmoved,
                        solid_json, NULL},
-    [PIGMENT_CHECKER] = {"checker", TP2_PIGMENT_CHECKER, checker_read, checker_pack,
+    [PIGMENT_CHECKER] = {"checker", NULL, TP2_PIGMENT_CHECKER, checker_read, checker_pack,
                          checker_move, checker_json, NULL},
-    [PIGMENT_GRADIENT] = {"gradient", TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
+    [PIGMENT_GRADIENT] = {"gradient", NULL, TP2_PIGMENT_GRADIENT, gradient_read, gradient_pack,
                           gradient_move, gradient_json, gradient_slope},
-    [PIGMENT_TEXMAP] = {"texmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack, texmap_move,
-                        texmap_json, texmap_slope},
+    [PIGMENT_TEXMAP] = {"texmap", "textmap", TP2_PIGMENT_TEXMAP, texmap_read, texmap_pack,
+                        texmap_move, texmap_json, texmap_slope},
 };
 
 const char *pigment_keywords(void)
 {
     static char text[128];
     if (!text[0]) {
-        const char *words[PIGMENT_COUNT];
-        for (int k = 0; k < PIGMENT_COUNT; k++)
-            words[k] = pigment_kinds[k].keyword;
-        keyword_list(words, PIGMENT_COUNT, text, sizeof text);
+        const char *words[2 * PIGMENT_COUNT];
+        int n = 0;
+        for (int k = 0; k < PIGMENT_COUNT; k++) {
+            words[n++] = pigment_kinds[k].keyword;
+            if (pigment_kinds[k].alias)
+                words[n++] = pigment_kinds[k].alias;
+        }
+        keyword_list(words, n, text, sizeof text);
     }
     return text;
 }

@@ -31,6 +31,7 @@ struct pigment_record {
 
 struct pigment_kind {
     const char *keyword;
+    const char *alias; /* another spelling read the same, or NULL */
     int gpu_kind; /* TP2_PIGMENT_* */
     /* Reads what follows the keyword into pg, each parameter checked with
      * a positioned error; a texmap decodes its image into the scene's
@@ -54,7 +55,8 @@ struct pigment_kind {
 
 extern const struct pigment_kind pigment_kinds[PIGMENT_COUNT];
 
-/* "'solid', 'checker', 'gradient' or 'texmap'". */
+/* "'solid', 'checker', 'gradient', 'texmap' or 'textmap'": the keywords,
+ * each followed by its alias. */
 const char *pigment_keywords(void);
 
 #endif

@@ -723,5 +723,38 @@ def case_formats(c):
             c.expect(status == 0 and f.read(len(magic)) == magic, f"{name}: {status} {err!r}")
 
 
+HANDOUT = os.path.join(HERE, "textmap", "handout-2022.txt")
+
+
+def case_textmap_is_texmap(c):
+    """The 2022 handout's `textmap` is texmap: --dump-scene says "texmap"
+    and the image has the same bytes as with `texmap` written."""
+    import json
+    import shutil
+    with open(HANDOUT) as f:
+        text = f.read()
+    c.require(text.count("textmap rainbow1.ppm") == 1, "handout scene changed")
+    shutil.copy(os.path.join(HERE, "textmap", "rainbow1.ppm"), c.tmp)
+    renamed = tp2test.scene_file(c.tmp, "texmap.txt", text.replace("textmap", "texmap"))
+    dumps = []
+    for scene in (HANDOUT, renamed):
+        status, out, err = run(c.tp2, ["--dump-scene", scene])
+        c.require(status == 0 and err == "", f"--dump-scene {scene}: exit {status}, {err!r}")
+        dumps.append(json.loads(out))
+    pigment = dumps[0]["pigments"][0]
+    c.expect(pigment["kind"] == "texmap" and pigment["width"] == 24 and pigment["height"] == 2,
+             f"dump: {pigment}")
+    c.expect(dumps[0]["pigments"] == [dict(p, file=dumps[0]["pigments"][0]["file"])
+                                      if p["kind"] == "texmap" else p
+                                      for p in dumps[1]["pigments"]], "pigments differ")
+    images = []
+    for scene, name in ((HANDOUT, "a.ppm"), (renamed, "b.ppm")):
+        status, _, err = run(c.tp2, [scene, c.out(name), "40", "30"])
+        c.require(status == 0 and err == "", f"{scene}: exit {status}, {err!r}")
+        with open(c.out(name), "rb") as f:
+            images.append(f.read())
+    c.expect(images[0] == images[1], "textmap and texmap images differ")
+
+
 if __name__ == "__main__":
     sys.exit(tp2test.run_cases(globals(), Check))
