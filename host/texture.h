@@ -25,13 +25,18 @@ struct texture_image {
 /* Decodes the image file at path into *out (free rgb with free()).
  * Returns 0, or -1 with *out zeroed and a reason written to why (no file
  * name in it: "No such file or directory", "not a BMP, PNG, JPEG or PPM
- * image", "PPM data ends early", ...). */
+ * image", "PPM data ends early", ...). It looks before it loads: a file
+ * whose first bytes are no BMP, PNG, JPEG or PPM is refused then, and an
+ * image is read no further than its header says it needs (or its decoder
+ * asks), so an endless file (a FIFO, /dev/zero) costs only its image.
+ * What no header bounds stops at 1 GiB ("File too large"). */
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize);
 
 /* Decodes an image file's len bytes held in memory, whatever its format
- * (PPM by its magic P3 or P6, else stb_image); as texture_load. Decoding
- * apart from reading, so that it can be tested and fuzzed without files. */
+ * (PPM by its magic P3 or P6, JPEG by libjpeg, PNG by libpng, BMP by
+ * stb_image); as texture_load, by the same readers, so that they can be
+ * tested and fuzzed without files. */
 int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
                    char *why, size_t whysize);
 
