@@ -1,7 +1,7 @@
 /* texture.h: decoding the images a texmap pigment names (SPEC 3).
  *
- * BMP, PNG and JPEG (and the other formats it knows) through stb_image,
- * Debian's libstb: a well-kept decoder beats a hand-written one. PPM
+ * BMP through stb_image (Debian's libstb), PNG through libpng and JPEG
+ * through libjpeg-turbo: well-kept decoders beat hand-written ones. PPM
  * through a small reader of our own, since stb_image reads neither ASCII
  * P3 nor maxvals other than 255 and 65535 (it does not scale them). */
 #ifndef TP2_TEXTURE_H
