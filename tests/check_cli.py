@@ -187,6 +187,107 @@ def case_input_sparse_gib(c):
     c.expect(sorted(os.listdir(c.tmp)) == ["big.txt", "scene.txt"], f"left {os.listdir(c.tmp)}")
 
 
+def texture_scene(c, texture):
+    """A scene whose one pigment is a texmap of texture (its name at 8:8)."""
+    return tp2test.scene_file(c.tmp, "scene.txt",
+                              "0 0 5\n0 0 0\n0 1 0\n40\n1\n0 0 0 1 1 1 0 0 0\n"
+                              f"1\ntexmap {texture} 0.5 0 0 0 0 0.5 0 0\n1\n1 0 0 1 0 0 1\n"
+                              "1\n0 0 sphere 0 0 0 2\n")
+
+
+def case_texture_endless_refused(c):
+    """/dev/zero as a texture is refused by its first bytes, at its name,
+    at once and in little memory (it was read whole up to 1 GiB: 1 GiB of
+    memory and 1.5 s)."""
+    scene = texture_scene(c, "/dev/zero")
+    status, err = run_bounded(c, [scene, c.out()])
+    c.expect(status == 1 and err == f"{scene}:8:8: error: cannot read texture '/dev/zero': "
+             "not a BMP, PNG, JPEG or PPM image\n", f"exit {status}, stderr {err!r}")
+    c.expect(os.listdir(c.tmp) == ["scene.txt"], f"left {os.listdir(c.tmp)}")
+
+
+class FifoWriter:
+    """A thread that writes head into the FIFO at path, then zeros without
+    end, until its reader closes it, stop() or 60 s; written counts the
+    bytes the pipe took. Never blocks: it waits for its reader with
+    O_NONBLOCK and for room with select."""
+
+    def __init__(self, path, head):
+        import threading
+        self.path, self.head, self.written = path, head, 0
+        self.done = threading.Event()
+        self.thread = threading.Thread(target=self.run, daemon=True)
+        self.thread.start()
+
+    def run(self):
+        import errno
+        import time
+        deadline = time.monotonic() + 60
+        fd = None
+        while fd is None:
+            try:
+                fd = os.open(self.path, os.O_WRONLY | os.O_NONBLOCK)
+            except OSError as e:  # ENXIO: no reader yet
+                if e.errno != errno.ENXIO or self.done.is_set() or time.monotonic() > deadline:
+                    return
+                time.sleep(0.005)
+        data, zeros = self.head, bytes(1 << 16)
+        try:
+            while not self.done.is_set() and time.monotonic() < deadline:
+                select.select([], [fd], [], 0.1)
+                try:
+                    n = os.write(fd, data)
+                except BlockingIOError:
+                    continue
+                self.written += n
+                data = data[n:] or zeros
+        except BrokenPipeError:  # the reader is done
+            pass
+        finally:
+            os.close(fd)
+
+    def stop(self):
+        self.done.set()
+        self.thread.join(10)
+
+
+def case_texture_fifo_read_as_needed(c):
+    """A FIFO that goes on writing after a small valid P6: the scene reads
+    and renders, the texture read no further than the image needs (a
+    pipe's buffer beyond it at most), in little memory and time, and the
+    image has the bytes of the same P6 read from a file."""
+    p6 = b"P6\n# 3 x 2\n3 2\n255\n" + bytes([255, 0, 0, 0, 255, 0, 0, 0, 255,
+                                                 255, 255, 0, 0, 255, 255, 40, 80, 120])
+    with open(c.out("file.ppm"), "wb") as f:
+        f.write(p6)
+    fifo = c.out("fifo.ppm")
+    os.mkfifo(fifo)
+    results = {}
+    # Every run_bounded first: they check the peak RSS of all runs so far.
+    for step, texture in (("dump", "fifo.ppm"), ("dump", "file.ppm"),
+                          ("render", "fifo.ppm"), ("render", "file.ppm")):
+        scene = texture_scene(c, texture)
+        writer = FifoWriter(fifo, p6) if texture == "fifo.ppm" else None
+        try:
+            if step == "dump":  # no Vulkan: the reading alone, bounded
+                status, err = run_bounded(c, ["--dump-scene", scene])
+            else:
+                status, _, err = run(c.tp2, [scene, c.out(f"{texture}.ppm"), "20", "15"],
+                                     timeout=60)
+        finally:
+            if writer:
+                writer.stop()
+        c.expect(status == 0 and err == "", f"{texture} {step}: exit {status}, {err!r}")
+        if writer:
+            c.expect(writer.written < (1 << 20), f"{texture} {step}: the reader took "
+                     f"{writer.written} bytes for an image of {len(p6)}")
+        if step == "render" and status == 0:
+            with open(c.out(f"{texture}.ppm"), "rb") as f:
+                results[texture] = f.read()
+    c.expect("file.ppm" in results and results.get("fifo.ppm") == results["file.ppm"],
+             "FIFO and file images differ")
+
+
 def case_input_garbage_after_scene(c):
     """A valid scene, 300 KB of comments (more than the lexer's window), then
     garbage: the error names the garbage's own line and column."""
@@ -721,6 +822,39 @@ def case_formats(c):
         status, _, err = run(c.tp2, [SCENE, c.out(name), "8", "6"])
         with open(c.out(name), "rb") as f:
             c.expect(status == 0 and f.read(len(magic)) == magic, f"{name}: {status} {err!r}")
+
+
+HANDOUT = os.path.join(HERE, "textmap", "handout-2022.txt")
+
+
+def case_textmap_is_texmap(c):
+    """The 2022 handout's `textmap` is texmap: --dump-scene says "texmap"
+    and the image has the same bytes as with `texmap` written."""
+    import json
+    import shutil
+    with open(HANDOUT) as f:
+        text = f.read()
+    c.require(text.count("textmap rainbow1.ppm") == 1, "handout scene changed")
+    shutil.copy(os.path.join(HERE, "textmap", "rainbow1.ppm"), c.tmp)
+    renamed = tp2test.scene_file(c.tmp, "texmap.txt", text.replace("textmap", "texmap"))
+    dumps = []
+    for scene in (HANDOUT, renamed):
+        status, out, err = run(c.tp2, ["--dump-scene", scene])
+        c.require(status == 0 and err == "", f"--dump-scene {scene}: exit {status}, {err!r}")
+        dumps.append(json.loads(out))
+    pigment = dumps[0]["pigments"][0]
+    c.expect(pigment["kind"] == "texmap" and pigment["width"] == 24 and pigment["height"] == 2,
+             f"dump: {pigment}")
+    c.expect(dumps[0]["pigments"] == [dict(p, file=dumps[0]["pigments"][0]["file"])
+                                      if p["kind"] == "texmap" else p
+                                      for p in dumps[1]["pigments"]], "pigments differ")
+    images = []
+    for scene, name in ((HANDOUT, "a.ppm"), (renamed, "b.ppm")):
+        status, _, err = run(c.tp2, [scene, c.out(name), "40", "30"])
+        c.require(status == 0 and err == "", f"{scene}: exit {status}, {err!r}")
+        with open(c.out(name), "rb") as f:
+            images.append(f.read())
+    c.expect(images[0] == images[1], "textmap and texmap images differ")
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ static int vec_eq(const double *v, double x, double y, double z)
 }
 
 /* The keyword lists of "expected ..." messages. */
-#define PIGMENT_WORDS "'solid', 'checker', 'gradient' or 'texmap'"
+#define PIGMENT_WORDS "'solid', 'checker', 'gradient', 'texmap' or 'textmap'"
 #define SHAPE_WORDS "'sphere', 'plane', 'polyhedron', 'box', 'cylinder', 'cone', 'torus', 'quadric', 'triangle' or 'mesh'"
 
 /* A valid scene, one section per macro, so errors can be placed in it.
@@ -333,6 +333,19 @@ static void test_files_beside_scene(void)
     CHECK(rc == 0 && s.ntextures == 1 && s.pigments[1].texture == 0);
     if (rc == 0)
         scene_free(&s);
+    /* `textmap` (the course's 2022 handout) is texmap, keyword and all:
+     * the same kind, the same numbers, the same decoded texture. */
+    text = CAM LIGHTS "2\ntextmap 2x.ppm\n 1 0 0 0\n 0 1 0 0.5\ntexmap 2x.ppm 1 0 0 0 0 1 0 0.5\n"
+           "0\n0\n";
+    rc = scene_parse_text(name, text, strlen(text), &s, err, sizeof err);
+    expect(rc == 0, "textmap: %s", rc ? err : "");
+    if (rc == 0) {
+        CHECK(s.pigments[0].kind == PIGMENT_TEXMAP && s.ntextures == 1 &&
+              s.pigments[1].texture == 0 && s.pigments[0].s[0] == 1 && s.pigments[0].t[3] == 0.5 &&
+              memcmp(s.pigments[0].s, s.pigments[1].s, sizeof s.pigments[0].s) == 0 &&
+              memcmp(s.pigments[0].t, s.pigments[1].t, sizeof s.pigments[0].t) == 0);
+        scene_free(&s);
+    }
     /* A malformed OBJ is reported at its own line and column. */
     write_file(dir, "bad.obj", "v 0 0 0\nf 1 2 3\n", 16);
     text = CAM LIGHTS PIGS FINS "1\n0 0 mesh bad.obj\n";

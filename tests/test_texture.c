@@ -9,7 +9,9 @@
  * overflow stb_image 2.27 (found by tests/fuzz/fuzz_image.c; JPEG now
  * goes to libjpeg-turbo), refused wherever they come; PNG (libpng) cut,
  * with a chunk longer than the file or a bad CRC refused; formats that
- * are not SPEC's refused before stb_image. texture_step: the steepest
+ * are not SPEC's refused before stb_image. Reading: bytes after an
+ * image change nothing, /dev/zero is refused by its first bytes, and a
+ * pipe that writes on after a P6 gives the P6. texture_step: the steepest
  * step between neighbouring texels, across the image's wrap too. Prints
  * "N passed, M failed" last. */
 #define _DEFAULT_SOURCE /* mkstemps, truncate */
@@ -17,6 +19,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <stb_image_write.h>
@@ -309,6 +313,111 @@ static void test_png_chunks(void)
 
 /* texture_step: neighbours side by side and one above the other, the
  * last column beside the first and the last row above the first. */
+/* A BMP of the image with an OS/2 header (12 bytes, 16-bit sizes), 24 bits
+ * bottom-up; or, palette != 0, a 40-byte header and 8-bit indices into a
+ * palette of its 6 colors. Rows are padded to 4 bytes. */
+static size_t other_bmp(unsigned char *out, int palette)
+{
+    size_t header = palette ? 54 + 6 * 4 : 14 + 12, row = palette ? 4 : 12;
+    size_t size = header + 2 * row;
+    memset(out, 0, size);
+    out[0] = 'B';
+    out[1] = 'M';
+    out[2] = (unsigned char)size;
+    out[10] = (unsigned char)header;
+    out[14] = palette ? 40 : 12;
+    out[18] = 3;
+    out[palette ? 22 : 20] = 2;
+    out[palette ? 26 : 22] = 1;
+    out[palette ? 28 : 24] = palette ? 8 : 24;
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 3; x++) {
+            unsigned char *at = out + header + (size_t)(1 - y) * row; /* bottom-up */
+            if (palette)
+                at[x] = (unsigned char)(y * 3 + x);
+            for (int c = 0; c < 3; c++) /* BGR */
+                (palette ? out + 54 + (y * 3 + x) * 4 : at + x * 3)[c] = image[y][x][2 - c];
+        }
+    return size;
+}
+
+/* A texture is read no further than it needs: every format gives the
+ * same texels with bytes after the image (the header says where a PPM's
+ * or a BMP's data ends; libpng and libjpeg stop at its end) as without,
+ * from memory and from a file; an OS/2 and a palette BMP read their rows;
+ * /dev/zero is refused by its first bytes; a pipe that goes on writing
+ * after a P6 gives the P6. */
+static void test_reads_as_needed(void)
+{
+    static unsigned char data[4096 + 1000];
+    size_t lens[6];
+    unsigned char *starts[6];
+    struct jpeg_buf png = {.len = 0}, jpg = {.len = 0};
+    CHECK(stbi_write_png_to_func(jpeg_append, &png, 3, 2, 3, image, 9) != 0);
+    CHECK(stbi_write_jpg_to_func(jpeg_append, &jpg, 3, 2, 3, image, 100) != 0);
+    static unsigned char bmps[3][128], p6[64];
+    int n = snprintf((char *)p6, sizeof p6, "P6\n#c\n3 2\n255\n");
+    memcpy(p6 + n, image, sizeof image);
+    starts[0] = p6, lens[0] = (size_t)n + sizeof image;
+    starts[1] = bmps[0], lens[1] = top_down_bmp(bmps[0]);
+    starts[2] = bmps[1], lens[2] = other_bmp(bmps[1], 0);
+    starts[3] = bmps[2], lens[3] = other_bmp(bmps[2], 1);
+    starts[4] = png.data, lens[4] = png.len;
+    starts[5] = jpg.data, lens[5] = jpg.len;
+    for (int f = 0; f < 6; f++) {
+        for (int trail = 0; trail < 2; trail++) {
+            memcpy(data, starts[f], lens[f]);
+            memset(data + lens[f], trail ? 0xFF : 0, 1000);
+            struct texture_image t;
+            char why[128] = "", path[64];
+            int rc = texture_decode(data, lens[f] + 1000 * (size_t)trail, &t, why, sizeof why);
+            expect(rc == 0 && same_as_image(&t, f == 5 ? 90 : 0), "format %d, %d trailing: %s",
+                   f, 1000 * trail, why);
+            free(t.rgb);
+            if (temp_file(data, lens[f] + 1000 * (size_t)trail, path, "") != 0)
+                continue;
+            rc = texture_load(path, &t, why, sizeof why);
+            expect(rc == 0 && same_as_image(&t, f == 5 ? 90 : 0), "file %d, %d trailing: %s",
+                   f, 1000 * trail, why);
+            free(t.rgb);
+            unlink(path);
+        }
+    }
+    struct texture_image t;
+    char why[128] = "";
+    int rc = texture_load("/dev/zero", &t, why, sizeof why);
+    expect(rc == -1 && strcmp(why, "not a BMP, PNG, JPEG or PPM image") == 0, "/dev/zero: %s",
+           why);
+    rc = texture_load("/tmp", &t, why, sizeof why);
+    expect(rc == -1 && strcmp(why, "Is a directory") == 0, "a folder: %s", why);
+    /* The pipe's writer: the P6, then zeros until the reader closes it
+     * (SIGPIPE) or 10 s pass (SIGALRM). */
+    int fds[2];
+    CHECK(pipe(fds) == 0);
+    pid_t child = fork();
+    CHECK(child >= 0);
+    if (child == 0) {
+        close(fds[0]);
+        alarm(10);
+        static const unsigned char zeros[4096];
+        if (write(fds[1], p6, lens[0]) == (ssize_t)lens[0])
+            while (write(fds[1], zeros, sizeof zeros) > 0)
+                ;
+        _exit(0);
+    }
+    close(fds[1]);
+    char path[64];
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    rc = texture_load(path, &t, why, sizeof why);
+    expect(rc == 0 && same_as_image(&t, 0), "P6 from a pipe: %s", rc ? why : "");
+    free(t.rgb);
+    close(fds[0]);
+    int status = 0;
+    waitpid(child, &status, 0);
+    expect(WIFSIGNALED(status) && WTERMSIG(status) == SIGPIPE,
+           "the pipe's writer ended otherwise than by SIGPIPE: %d", status);
+}
+
 static void test_step(void)
 {
     uint8_t flat[2 * 3 * 3];
@@ -339,5 +448,6 @@ int main(void)
     test_files();
     test_jpeg_huffman();
     test_png_chunks();
+    test_reads_as_needed();
     return unit_report();
 }

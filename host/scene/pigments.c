@@ -219,7 +219,8 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
 #define solid_OPS solid_read, solid_pack, unmoved, solid_json, NULL
 #define checker_OPS checker_read, checker_pack, checker_move, checker_json, NULL
 #define gradient_OPS gradient_read, gradient_pack, gradient_move, gradient_json, gradient_slope
-#define texmap_OPS texmap_read, texmap_pack, texmap_move, texmap_json, texmap_slope
+#define texmap_OPS texmap_read, texmap_pack, texmap_move, texmap_json, texmap_slope, \
+                   .alias = "textmap" /* the 2022 handout's spelling */
 
 #define TP2_PIGMENT_ROW_(NAME, keyword, id) [PIGMENT_##NAME] = {#keyword, id, keyword##_OPS},
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {TP2_PIGMENTS(TP2_PIGMENT_ROW_)};
@@ -228,10 +229,14 @@ const char *pigment_keywords(void)
 {
     static char text[128];
     if (!text[0]) {
-        const char *words[PIGMENT_COUNT];
-        for (int k = 0; k < PIGMENT_COUNT; k++)
-            words[k] = pigment_kinds[k].keyword;
-        keyword_list(words, PIGMENT_COUNT, text, sizeof text);
+        const char *words[2 * PIGMENT_COUNT];
+        int n = 0;
+        for (int k = 0; k < PIGMENT_COUNT; k++) {
+            words[n++] = pigment_kinds[k].keyword;
+            if (pigment_kinds[k].alias)
+                words[n++] = pigment_kinds[k].alias;
+        }
+        keyword_list(words, n, text, sizeof text);
     }
     return text;
 }

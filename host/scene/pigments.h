@@ -50,11 +50,14 @@ struct pigment_kind {
      * NULL for none: a solid's color does not change, a checker's cells
      * are decisions of their own. */
     double (*slope)(const struct scene *s, const struct scene_pigment *pg);
+    /* Another spelling read the same (texmap_OPS sets it), or NULL. */
+    const char *alias;
 };
 
 extern const struct pigment_kind pigment_kinds[PIGMENT_COUNT];
 
-/* "'solid', 'checker', 'gradient' or 'texmap'". */
+/* "'solid', 'checker', 'gradient', 'texmap' or 'textmap'": the keywords,
+ * each followed by its alias. */
 const char *pigment_keywords(void);
 
 #endif

@@ -142,11 +142,13 @@ static int parse_lights(struct scene_reader *p)
     return 0;
 }
 
-/* A pigment keyword, then that kind's parameters (pigments.c). */
+/* A pigment keyword (or its alias: the course's 2022 handout writes
+ * `textmap`), then that kind's parameters (pigments.c). */
 static int parse_pigment(struct scene_reader *p, struct scene_pigment *pg)
 {
     for (int k = 0; k < PIGMENT_COUNT; k++)
-        if (read_is_word(&p->tok, pigment_kinds[k].keyword)) {
+        if (read_is_word(&p->tok, pigment_kinds[k].keyword) ||
+            (pigment_kinds[k].alias && read_is_word(&p->tok, pigment_kinds[k].alias))) {
             read_next(p);
             pg->kind = k;
             return pigment_kinds[k].read(p, pg);

@@ -1,7 +1,7 @@
 /* texture.h: decoding the images a texmap pigment names (SPEC 3).
  *
- * BMP, PNG and JPEG (and the other formats it knows) through stb_image,
- * Debian's libstb: a well-kept decoder beats a hand-written one. PPM
+ * BMP through stb_image (Debian's libstb), PNG through libpng and JPEG
+ * through libjpeg-turbo: well-kept decoders beat hand-written ones. PPM
  * through a small reader of our own, since stb_image reads neither ASCII
  * P3 nor maxvals other than 255 and 65535 (it does not scale them). */
 #ifndef TP2_TEXTURE_H
@@ -25,13 +25,18 @@ struct texture_image {
 /* Decodes the image file at path into *out (free rgb with free()).
  * Returns 0, or -1 with *out zeroed and a reason written to why (no file
  * name in it: "No such file or directory", "not a BMP, PNG, JPEG or PPM
- * image", "PPM data ends early", ...). */
+ * image", "PPM data ends early", ...). It looks before it loads: a file
+ * whose first bytes are no BMP, PNG, JPEG or PPM is refused then, and an
+ * image is read no further than its header says it needs (or its decoder
+ * asks), so an endless file (a FIFO, /dev/zero) costs only its image.
+ * What no header bounds stops at 1 GiB ("File too large"). */
 int texture_load(const char *path, struct texture_image *out, char *why,
                  size_t whysize);
 
 /* Decodes an image file's len bytes held in memory, whatever its format
- * (PPM by its magic P3 or P6, else stb_image); as texture_load. Decoding
- * apart from reading, so that it can be tested and fuzzed without files. */
+ * (PPM by its magic P3 or P6, JPEG by libjpeg, PNG by libpng, BMP by
+ * stb_image); as texture_load, by the same readers, so that they can be
+ * tested and fuzzed without files. */
 int texture_decode(const unsigned char *data, size_t len, struct texture_image *out,
                    char *why, size_t whysize);
 
