@@ -31,7 +31,7 @@ Targets checked (the project's): ratio <= 0.5 at 1920x1080, <= 1.0 at
 400x300.
 
 Outputs: a plain-text table on stdout (paste into README.TXT) with the
-machine, date and exact command, and a CSV (default docs/bench/bench.csv;
+machine, date and exact command, and a CSV (default docs/bench.csv;
 --csv). --compare also compares the two programs' last images (same picture
 check, with build/tests/tp2-imgcmp: mean error in levels, % of pixels off
 by more than 8).
@@ -523,9 +523,9 @@ def main(argv=None):
                     help='seconds before a run is killed (default 600); a '
                          'timed-out program is not run again on that '
                          'scene and size')
-    ap.add_argument('--csv', default=os.path.join(REPO, 'docs', 'bench',
+    ap.add_argument('--csv', default=os.path.join(REPO, 'docs',
                                                   'bench.csv'),
-                    help='CSV to write (default docs/bench/bench.csv)')
+                    help='CSV to write (default docs/bench.csv)')
     ap.add_argument('--no-csv', action='store_true', help='write no CSV')
     ap.add_argument('--compare', action='store_true',
                     help='compare the two programs\' images (mean abs diff)')
