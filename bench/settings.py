@@ -124,6 +124,7 @@ def header(tp2, env, args):
             cpu, os.cpu_count() or 0, platform.release()),
         'device': dev[0] if dev else '?',
         'command': 'bench/settings.py ' + ' '.join(sys.argv[1:]),
+        'load': '%.2f %.2f %.2f at start' % os.getloadavg(),
     }
 
 
@@ -201,12 +202,14 @@ def measure(args):
                          'within1': '%.6f' % v['within1'],
                          'bad8': '%d' % v['bad8'], 'mae': '%.6f' % v['mae']})
     info['minutes'] = '%.1f' % ((time.time() - t_start) / 60)
+    info['load'] += ', %.2f %.2f %.2f at end' % os.getloadavg()
     return info, rows
 
 
 def write_csv(path, info, rows):
     with open(path, 'w', newline='') as fh:
-        for k in ('date', 'build', 'machine', 'device', 'command', 'minutes'):
+        for k in ('date', 'build', 'machine', 'device', 'command', 'minutes',
+                  'load'):
             fh.write('# %s: %s\n' % (k, info[k]))
         w = csv.DictWriter(fh, FIELDS)
         w.writeheader()
@@ -279,56 +282,123 @@ def print_table(info, summary, spp_pts, nscenes):
         print('spp %-3d %6.2fx spp 1   median mae %.4f' % (n, ratio, mae))
 
 
+def print_scene_tables(rows):
+    """Per-scene tables for docs/performance.md and docs/accuracy.md."""
+    labels = [l for l, _ in SETTINGS]
+    t = {}
+    for r in rows:
+        if r['part'] == 'time':
+            t.setdefault(r['scene'], {})[r['setting']] = float(r['wall_s'])
+    print('\ntime at %s, seconds (x float in brackets)' % next(
+        r['size'] for r in rows if r['part'] == 'time'))
+    print('    %-26s' % 'scene' + ''.join('%16s' % l.replace(', no pruning',
+                                                            ' b0')
+                                      for l in labels))
+    for scene, v in t.items():
+        print('    %-26s' % scene + ''.join(
+            '%16s' % ('%.2f' % v[l] if l == 'float' else
+                      '%.2f (%.2f)' % (v[l], v[l] / v['float']))
+            for l in labels))
+    print('\naccuracy against the exact image: within1 / pixels off by > 8')
+    show = ['float', 'mixed', 'auto']
+    print('    %-44s' % 'scene' + ''.join('%18s' % l for l in show))
+    acc = {}
+    for r in rows:
+        if r['part'] == 'accuracy':
+            acc.setdefault(r['scene'], {})[r['setting']] = r
+    for scene, v in acc.items():
+        print('    %-44s' % scene + ''.join(
+            '%18s' % ('%s / %s%s' % (v[l]['within1'], v[l]['bad8'],
+                                     '' if float(v[l]['within1']) >= MIN_WITHIN1
+                                     and int(v[l]['bad8']) <= MAX_BAD8 else '!'))
+            for l in show))
+
+
 def draw_chart(path, info, summary, spp_pts, nscenes):
+    import textwrap
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FixedLocator, NullLocator, FuncFormatter
     fig, (ax, ax2) = plt.subplots(
-        1, 2, figsize=(10, 5.6), gridspec_kw={'width_ratios': [3, 1]})
+        1, 2, figsize=(11, 6.2), gridspec_kw={'width_ratios': [3.2, 1]})
     colours = {'float': 'tab:blue', 'mixed': 'tab:orange',
                'auto': 'tab:green', 'double': 'tab:green'}
+    n = summary['float'][4]
+    # Labels stacked in a column beside each group of points that share a
+    # height, joined to their points by thin lines, so none overlaps.
+    groups = {}
     for label, _ in SETTINGS:
-        g, lo, hi, m, n, b8, worst, _ = summary[label]
+        groups.setdefault(summary[label][3], []).append(label)
+    xs = [summary[l][0] for l, _ in SETTINGS]
+    x_text = max(summary[l][2] for l, _ in SETTINGS) * 1.15
+    dodge = 2.2  # points sharing a count drawn this far apart, in scenes
+    for label, _ in SETTINGS:
+        g, lo, hi, m, _, b8, worst, _ = summary[label]
         pruned = 'no pruning' not in label
         c = colours[label.split(',')[0]]
-        ax.errorbar([g], [m], xerr=[[g - lo], [hi - g]], fmt='none',
-                    ecolor=c, alpha=0.5, capsize=3)
-        ax.plot([g], [m], marker='*' if label == DEFAULT else
-                ('o' if pruned else 's'), markersize=18 if label == DEFAULT
-                else 9, color=c, markerfacecolor=c if pruned else 'white',
-                markeredgewidth=2, linestyle='none')
-        text = label + (' = double here (default)' if label == DEFAULT
+        peers = sorted(groups[m], key=lambda l: -summary[l][0])
+        k = peers.index(label)
+        y = m + ((len(peers) - 1) / 2 - k) * dodge
+        ax.errorbar([g], [y], xerr=[[g - lo], [hi - g]], fmt='none',
+                    ecolor=c, alpha=0.45, capsize=4, linewidth=1.5)
+        ax.plot([g], [y], marker='*' if label == DEFAULT else
+                ('o' if pruned else 's'), markersize=20 if label == DEFAULT
+                else 10, color=c, markerfacecolor=c if pruned else 'white',
+                markeredgewidth=2, linestyle='none', zorder=3)
+        y_text = m + 6 + ((len(peers) - 1) / 2 - k) * 3.6
+        name = label + (' (default; double here)' if label == DEFAULT
                         else '')
-        text += '\n%.2fx, worst %d bad px' % (g, b8)
-        ax.annotate(text, (g, m), textcoords='offset points',
-                    xytext=(10, -14 if pruned else 6), fontsize=8.5)
-    n = summary['float'][4]
-    ax.set_ylim(min(s[3] for s in summary.values()) - 3, n + 2)
-    ax.axhline(n, color='grey', linestyle=':', linewidth=1)
+        ax.annotate('%s: %.2fx, %d/%d, worst %d px' % (name, g, m, n, b8),
+                    (g, y), xytext=(x_text, y_text), fontsize=9,
+                    color='black', va='center',
+                    fontweight='bold' if label == DEFAULT else 'normal',
+                    arrowprops=dict(arrowstyle="-", color=c, alpha=0.7, relpos=(0, 0.5),
+                                    linewidth=0.8))
     ax.set_xscale('log')
-    ax.set_xlabel('time relative to --precision float (geometric mean over '
-                  '%d bench scenes at %s;\nwhiskers: fastest and slowest '
-                  'scene)' % (nscenes, '1920x1080'))
-    ax.set_ylabel('scenes meeting the accuracy bar (of %d, at 400x300)' % n)
-    ax.set_title('Which setting, and what does it cost?')
-    ax.grid(True, which='both', alpha=0.3)
-    xs = [p[1] for p in spp_pts]
-    ax2.plot(xs, [p[2] for p in spp_pts], marker='o', color='tab:green')
+    lo_x = min(summary[l][1] for l, _ in SETTINGS)
+    hi_x = max(summary[l][2] for l, _ in SETTINGS)
+    ax.set_xlim(lo_x / 1.2, hi_x * 9)
+    ticks = [t for t in (0.5, 0.75, 1, 1.5, 2, 3, 5, 10, 20)
+             if lo_x / 1.2 <= t <= hi_x * 1.2]
+    ax.xaxis.set_major_locator(FixedLocator(ticks))
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: '%gx' % v))
+    ax.set_ylim(0, n + 20)
+    ax.axhline(n, color='grey', linestyle=':', linewidth=1)
+    ax.set_xlabel('time relative to --precision float: geometric mean over '
+                  '%d bench scenes at 1920x1080\n(whiskers: the fastest and '
+                  'the slowest scene; one timed run each)' % nscenes)
+    ax.set_ylabel('scenes meeting the accuracy bar, of %d (400x300)' % n)
+    ax.set_title('Which setting, and what does it cost?  '
+                 '(filled: default pruning; hollow: --bailout 0)',
+                 fontsize=11)
+    ax.grid(True, alpha=0.3)
+    ax2.plot([p[1] for p in spp_pts], [p[2] for p in spp_pts], marker='o',
+             color='tab:green')
     for sp, x, y in spp_pts:
         ax2.annotate('%d spp' % sp, (x, y), textcoords='offset points',
-                     xytext=(4, 4), fontsize=8.5)
+                     xytext=(6, 4), fontsize=9)
     ax2.set_xscale('log')
+    ax2.xaxis.set_major_locator(FixedLocator([1, 2, 4, 8, 16]))
+    ax2.xaxis.set_minor_locator(NullLocator())
+    ax2.xaxis.set_major_formatter(FuncFormatter(lambda v, _: '%gx' % v))
+    ax2.set_xlim(0.8, max(p[1] for p in spp_pts) * 1.6)
+    ax2.set_ylim(0, max(p[2] for p in spp_pts) * 1.15)
     ax2.set_xlabel('time relative to 1 spp')
-    ax2.set_ylabel('median mean error (levels) vs 64 spp')
-    ax2.set_title('Samples per pixel (default)', fontsize=10)
-    ax2.grid(True, which='both', alpha=0.3)
-    fig.text(0.01, 0.01, '%s, %s; %s; %s. Bar: >=99.95%% of channels within '
-             '1 level and <=10 pixels off by >8 levels,\nagainst --precision '
-             'double --bailout 0 at the same samples. Filled: default '
-             'pruning (--bailout 1/255); hollow: --bailout 0. '
-             'bench/settings.py' % (
-                 info.get('build'), info.get('date'), info.get('device'),
-                 info.get('machine')), fontsize=7.5)
+    ax2.set_ylabel('median mean error (levels) against 64 spp')
+    ax2.set_title('Samples per pixel (default setting)', fontsize=10)
+    ax2.grid(True, alpha=0.3)
+    caption = ('%s; %s; %s; %s. Bar: at least 99.95%% of channel values '
+               'within one level and at most 10 pixels off by more than 8 '
+               'levels, against --precision double --bailout 0 at the same '
+               'samples (so only precision and pruning vary). All points '
+               'from one run of bench/settings.py; points that share a count '
+               'are drawn slightly apart.' % (
+                   info.get('build'), info.get('date'), info.get('device'),
+                   info.get('machine')))
+    fig.text(0.01, 0.01, '\n'.join(textwrap.wrap(caption, 190)),
+             fontsize=7.5, va='bottom')
     fig.tight_layout(rect=(0, 0.07, 1, 1))
     fig.savefig(path, dpi=100)
 
@@ -352,6 +422,8 @@ def main():
                                                     'settings.png'))
     ap.add_argument('--no-chart', action='store_true')
     ap.add_argument('--plot-only', action='store_true')
+    ap.add_argument('--scene-tables', action='store_true',
+                    help='also print per-scene time and accuracy tables')
     args = ap.parse_args()
     if args.plot_only:
         info, rows = read_csv(args.csv)
@@ -360,6 +432,8 @@ def main():
         write_csv(args.csv, info, rows)
     summary, spp_pts, nscenes = summarise(rows)
     print_table(info, summary, spp_pts, nscenes)
+    if args.scene_tables:
+        print_scene_tables(rows)
     if not args.no_chart:
         draw_chart(args.chart, info, summary, spp_pts, nscenes)
 
