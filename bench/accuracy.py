@@ -55,7 +55,7 @@ line a decade below the smallest non-zero error, and the chart says so.
 
 Outputs:
   stdout                        progress, then a plain-text table (for
-                                README.TXT) headed by the exact command
+                                docs/performance.md) headed by the exact command
   docs/accuracy-spp.csv    scene, precision, spp, median_s, runs, mae,
                                 psnr, within1, bad8 (--csv)
   docs/accuracy-spp.png    mae (log) against median time (log), one
