@@ -55,10 +55,10 @@ line a decade below the smallest non-zero error, and the chart says so.
 
 Outputs:
   stdout                        progress, then a plain-text table (for
-                                README.TXT) headed by the exact command
-  docs/accuracy/accuracy.csv    scene, precision, spp, median_s, runs, mae,
+                                docs/performance.md) headed by the exact command
+  docs/accuracy-spp.csv    scene, precision, spp, median_s, runs, mae,
                                 psnr, within1, bad8 (--csv)
-  docs/accuracy/accuracy.png    mae (log) against median time (log), one
+  docs/accuracy-spp.png    mae (log) against median time (log), one
                                 colour per scene, float solid, double
                                 dashed, points labelled with spp (--chart;
                                 --no-chart draws none; --plot-only redraws
@@ -329,12 +329,12 @@ def main():
     ap.add_argument('--imgcmp',
                     help='tp2-imgcmp binary (default tests/tp2-imgcmp '
                          'beside the tp2 binary)')
-    ap.add_argument('--csv', default=os.path.join(REPO, 'docs', 'accuracy',
-                                                  'accuracy.csv'),
-                    help='CSV output (default docs/accuracy/accuracy.csv)')
-    ap.add_argument('--chart', default=os.path.join(REPO, 'docs', 'accuracy',
-                                                    'accuracy.png'),
-                    help='PNG chart (default docs/accuracy/accuracy.png)')
+    ap.add_argument('--csv', default=os.path.join(REPO, 'docs',
+                                                  'accuracy-spp.csv'),
+                    help='CSV output (default docs/accuracy-spp.csv)')
+    ap.add_argument('--chart', default=os.path.join(REPO, 'docs',
+                                                    'accuracy-spp.png'),
+                    help='PNG chart (default docs/accuracy-spp.png)')
     ap.add_argument('--no-csv', action='store_true', help='write no CSV')
     ap.add_argument('--plot-only', action='store_true',
                     help='render nothing: redraw the chart and print the '

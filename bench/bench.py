@@ -30,15 +30,15 @@ XDG_RUNTIME_DIR=/tmp when unset.
 Targets checked (the project's): ratio <= 0.5 at 1920x1080, <= 1.0 at
 400x300.
 
-Outputs: a plain-text table on stdout (paste into README.TXT) with the
-machine, date and exact command, and a CSV (default docs/bench/bench.csv;
+Outputs: a plain-text table on stdout (for docs/performance.md) with the
+machine, date and exact command, and a CSV (default docs/bench.csv;
 --csv). --compare also compares the two programs' last images (same picture
 check, with build/tests/tp2-imgcmp: mean error in levels, % of pixels off
 by more than 8).
 
 --phases: tp2 runs with --stats, and a second table gives the median of
 each phase tp2 reports (parse, device, bvh, upload, pipeline, render,
-readback, write; see README.TXT "--stats") beside its wall time, so a
+readback, write; see tp2 --help, --stats) beside its wall time, so a
 reader sees where the time goes at each size. --stats also counts rays
 on the device, which costs some render time: compare wall times of runs
 made the same way.
@@ -523,9 +523,9 @@ def main(argv=None):
                     help='seconds before a run is killed (default 600); a '
                          'timed-out program is not run again on that '
                          'scene and size')
-    ap.add_argument('--csv', default=os.path.join(REPO, 'docs', 'bench',
+    ap.add_argument('--csv', default=os.path.join(REPO, 'docs',
                                                   'bench.csv'),
-                    help='CSV to write (default docs/bench/bench.csv)')
+                    help='CSV to write (default docs/bench.csv)')
     ap.add_argument('--no-csv', action='store_true', help='write no CSV')
     ap.add_argument('--compare', action='store_true',
                     help='compare the two programs\' images (mean abs diff)')

@@ -1,6 +1,6 @@
 /* png_levels.c: how long libpng takes to encode tp2's images at each zlib
- * level and row filter, and how large the files get (README.TXT
- * "Performance", PNG output). Reads binary PPMs (tp2's output), encodes
+ * level and row filter, and how large the files get (docs/decisions.md,
+ * PNG output). Reads binary PPMs (tp2's output), encodes
  * each in memory --runs times per setting and prints the median CPU time.
  *
  *     cc -O2 bench/png_levels.c -lpng -o /tmp/png_levels

@@ -6,8 +6,8 @@ Run it with Debian's interpreter, which has python3-matplotlib
 
     /usr/bin/python3 bench/scaling.py [--n 10,100,1000,10000,100000]
         [--kind spheres|triangles] [--runs 3] [--size 400x300] [--pov] [--timeout 300]
-        [--tp2 build/tp2] [--csv docs/bench/scaling.csv]
-        [--png docs/bench/scaling.png] [--keep-scenes DIR]
+        [--tp2 build/tp2] [--csv docs/scaling.csv]
+        [--png docs/scaling.png] [--keep-scenes DIR]
 
 (`python3` on PATH may be a pyenv interpreter without matplotlib; if the
 import fails, the script re-runs only its plotting step, `--plot-only`,
@@ -244,9 +244,9 @@ def main(argv=None):
                     help="both programs' least traced ray weight (default 1/255)")
     ap.add_argument('--threads', type=int, default=2)
     ap.add_argument('--no-icd', action='store_true')
-    ap.add_argument('--csv', default=os.path.join(REPO, 'docs', 'bench',
+    ap.add_argument('--csv', default=os.path.join(REPO, 'docs',
                                                   'scaling.csv'))
-    ap.add_argument('--png', default=os.path.join(REPO, 'docs', 'bench',
+    ap.add_argument('--png', default=os.path.join(REPO, 'docs',
                                                   'scaling.png'))
     ap.add_argument('--keep-scenes', metavar='DIR',
                     help='keep the generated scenes (and .pov files) here')

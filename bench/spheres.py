@@ -6,7 +6,7 @@ them mirrors and a third glass, on a checker floor (a BVH benchmark).
 
 bench/scenes/spheres.txt is its default output, in the benchmark's scene
 set (bench.py, compare.py). It is not among scenes/ because the float
-path misses the accuracy bar there (README "Accuracy": the checker
+path misses the accuracy bar there (docs/accuracy.md: the checker
 floor's horizon, seen directly and in a hundred mirrors).
 
 The spheres (radius 0.35 to 0.8) lie on the floor y = 0 in x, z within

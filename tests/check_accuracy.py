@@ -8,7 +8,7 @@ lavapipe auto renders the whole image in double) and the exact image of
 SPEC 4 (--precision double --bailout 0) as PFM, at 400 x 300 unless told,
 and asks tp2-imgcmp whether the default and mixed images each have at
 least 99.95% of channel values within +-1 level of the exact one and at
-most 10 pixels off by more than 8 levels (README.TXT "Accuracy"). Also
+most 10 pixels off by more than 8 levels (docs/accuracy.md). Also
 renders --precision float and prints its figures against the same bar,
 which several scenes fail: what mixed's double retrace buys, shown."""
 import os

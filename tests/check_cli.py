@@ -125,7 +125,7 @@ def case_names_escaped(c):
 
 
 # Input that never ends or is huge is refused as soon as its text shows
-# the error, in bounded memory (README.TXT, "Input limits"): tp2 streams the
+# the error, in bounded memory (docs/format.md, "Input limits"): tp2 streams the
 # scene, it does not read it whole. Before, /dev/zero grew past 4 GB and a
 # 1 GiB file cost 2.1 GB and 5 s.
 ENDLESS_SECONDS = 5      # each run, generous for a loaded machine and ASan
@@ -331,7 +331,7 @@ def case_input_numbers_across_reads(c):
              f"'{'1' * 32}...' is longer than 65536 bytes\n", f"exit {status}, stderr {err!r}")
 
 
-# Float's range (README.TXT, "Precision"; scene_length_limit in
+# Float's range (docs/design.md, "Float's range"; scene_length_limit in
 # host/scene/scene.c): a sphere 1e20 away with radius 5e19, seen from the origin
 # at 90 degrees; it covers the middle of the image, the corners are the
 # gray background. In float |o - c|^2 = 1e40 is infinite and the sphere
