@@ -12,7 +12,7 @@ import re
 import sys
 
 import tp2test
-from tp2test import read_pfm, read_ppm, render, run, scene_file
+from tp2test import layer_env, read_pfm, read_ppm, render, run, scene_file
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import mesh  # noqa: E402  (bench/mesh.py: the OBJ generator)
@@ -1107,10 +1107,11 @@ def expect_auto_is_float(c, env, why):
 
 
 def case_auto_without_float64(c):
-    """On a device without shaderFloat64 (TP2_FLOAT64=0 hides it) auto and
-    mixed are float, and --stats says so; --precision double is refused, exit 1,
-    nothing written."""
-    env = {"TP2_FLOAT64": "0"}
+    """On a device without shaderFloat64 (VK_LAYER_TP2_no_fp64 hides it from
+    lavapipe, and refuses a device or a shader module that would use it)
+    auto and mixed are float, and --stats says so; --precision double is
+    refused, exit 1, nothing written."""
+    env = layer_env("no_fp64")
     scene = expect_auto_is_float(c, env, "the device has no shaderFloat64")
     out = os.path.join(c.tmp, "d.pfm")
     status, _, err = run(c.tp2, ["--precision", "double", scene, out, "40", "30"], env)
@@ -1146,10 +1147,33 @@ def ppm_differences(a, b):
     return within1, far_off(x, y)
 
 
+def case_layers_below_validation(c):
+    """Under each device layer of the tests (tests/layers) the validation
+    layer sits above it, for the instance and the device (the loader's own
+    account, VK_LOADER_DEBUG=layer), so validation sees tp2's calls, not
+    the layer's; the render succeeds without a message."""
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    for layer in ("no_fp64", "fused"):
+        env = {**layer_env(layer), "VK_LOADER_DEBUG": "layer"}
+        out = os.path.join(c.tmp, layer + ".ppm")
+        status, _, err = run(c.tp2, ["--precision", "float", scene, out, "8", "6"], env)
+        c.require(status == 0, f"{layer}: exit {status}: {err[-2000:]}")
+        for call in ("vkCreateInstance", "vkCreateDevice"):
+            stack = err.split(f"{call} layer callstack setup to:", 1)
+            c.require(len(stack) == 2, f"{layer}: no {call} layer stack in {err[-2000:]!r}")
+            names = re.findall(r"\b(VK_LAYER_\w+)\s*$", stack[1].split("<Drivers>")[0]
+                               .split("<Device>")[0], re.M)
+            c.expect(names.index("VK_LAYER_KHRONOS_validation")
+                     < names.index(f"VK_LAYER_TP2_{layer}")
+                     if f"VK_LAYER_TP2_{layer}" in names and
+                     "VK_LAYER_KHRONOS_validation" in names else False,
+                     f"{layer} {call}: layers top to bottom {names}")
+
+
 def case_mixed_same_when_fused(c):
     """The same image on a device that rounds otherwise (issue 9 item 3):
-    TP2_FUSED=1 makes the shaders round as a GPU compiler that fuses
-    multiply-adds and dot products would (host/spirv_fused.h). On scenes
+    VK_LAYER_TP2_fused makes the shaders round as a GPU compiler that fuses
+    multiply-adds and dot products would (tests/layers/spirv_fused.h). On scenes
     built to make float fail, that flips float's decisions (pixels off by
     more than 8 levels between the two devices), while mixed's two images
     stay within one level of each other almost everywhere, with none off
@@ -1168,14 +1192,15 @@ def case_mixed_same_when_fused(c):
         for label, options, env in (
                 ("exact", ["--precision", "double", "--bailout", "0"], {}),
                 ("float", ["--precision", "float"], {}),
-                ("float fused", ["--precision", "float"], {"TP2_FUSED": "1"}),
+                ("float fused", ["--precision", "float"], layer_env("fused")),
                 ("mixed", ["--precision", "mixed"], {}),
-                ("mixed fused", ["--precision", "mixed"], {"TP2_FUSED": "1"})):
+                ("mixed fused", ["--precision", "mixed"], layer_env("fused"))):
             out[label] = os.path.join(c.tmp, f"{name}-{label.replace(' ', '-')}.ppm")
             status, _, err = run(c.tp2, ["--quiet", *options, scene, out[label], *size], env)
             c.require(status == 0, f"{name} {label}: exit {status}: {err}")
-            fused = re.findall(r"TP2_FUSED: (\d+) operations of the \w+ shader fused", err)
-            c.expect((len(fused) > 0) == ("fused" in label) and all(int(n) > 0 for n in fused),
+            fused = [int(n) for n in re.findall(
+                r"VK_LAYER_TP2_fused: (\d+) operations fused in a module", err)]
+            c.expect((len(fused) > 0) == ("fused" in label) and max(fused, default=1) > 0,
                      f"{name} {label}: {err!r}")
         float_flips += ppm_differences(out["float"], out["float fused"])[1]
         within1, bad8 = ppm_differences(out["mixed"], out["mixed fused"])

@@ -1,15 +1,18 @@
-/* test_spirv_fused.c: the rewrite that makes tp2's shaders round as a
- * device that fuses multiply-adds (spirv_fused, for TP2_FUSED=1). On each
- * of the six embedded trace shaders: operations are rewritten, the result is a
- * well-formed module that declares Float64 once and defines every id once
- * (SSA), its id bound covers every id, and a second pass finds nothing
- * left to fuse. Malformed modules are refused. (That the rewritten shader
- * is valid SPIR-V that renders is checked under the validation layer by
- * effect_auto_same_when_fused.) */
+/* test_spirv_fused.c: the rewrite with which VK_LAYER_TP2_fused
+ * (tests/layers) makes shaders round as a device that fuses multiply-adds
+ * (spirv_fused.h). On each of the six embedded trace shaders: operations
+ * are rewritten, the result is a well-formed module that declares Float64
+ * once and defines every id once (SSA), its id bound covers every id,
+ * SPIRV-Tools' validator accepts it, and a second pass finds nothing left
+ * to fuse. finish.comp, all of whose arithmetic on products is `precise`
+ * (NoContraction), has none of that fused. Malformed modules are refused.
+ * (That rewritten shaders render is checked under the layer and the
+ * validation layer by effect_mixed_same_when_fused.) */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "finish_spv.h"
 #include "spirv_fused.h"
 #include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
@@ -71,6 +74,7 @@ static void check_shader(const char *name, const uint32_t *code, size_t bytes)
     expect(float64 == 1, "%s: Float64 declared once (%d)", name, float64);
     expect(twice == 0, "%s: %d ids defined twice", name, twice);
     expect(beyond == 0, "%s: %d ids past the bound", name, beyond);
+    expect(spirv_valid(name, out, out_words), "%s: valid SPIR-V", name);
     size_t again_words = 0, again = 99;
     uint32_t *second = spirv_fused(out, out_words, &again_words, &again);
     expect(second && again == 0, "%s: a second pass fuses %zu more", name, again);
@@ -86,6 +90,10 @@ int main(void)
     check_shader("double curved", tp2_trace_double_curved, sizeof tp2_trace_double_curved);
     check_shader("float basic", tp2_trace_float_basic, sizeof tp2_trace_float_basic);
     check_shader("double basic", tp2_trace_double_basic, sizeof tp2_trace_double_basic);
+    size_t words, sites = 99;
+    uint32_t *finish = spirv_fused(tp2_finish, sizeof tp2_finish / 4, &words, &sites);
+    expect(finish && sites == 0, "finish.comp: %zu operations fused despite `precise`", sites);
+    free(finish);
     spirv_check_refused(spirv_fused, tp2_trace_float, sizeof tp2_trace_float);
     return unit_report();
 }

@@ -15,6 +15,15 @@ def run(tp2, args, env=None, timeout=600):
     return r.returncode, r.stdout.decode("utf-8", "replace"), r.stderr.decode("utf-8", "replace")
 
 
+def layer_env(layer):
+    """The environment that runs tp2 on lavapipe as the device a test layer
+    makes of it (tests/layers: "no_fp64" or "fused"), below the validation
+    layer, so that validation sees tp2's own calls."""
+    folder = os.environ.get("TP2_TEST_LAYERS")
+    assert folder, "TP2_TEST_LAYERS is not set: run the tests through ctest"
+    return {"XDG_DATA_HOME": os.path.join(folder, layer)}
+
+
 def render(tp2, scene, out, size=(), options=(), env=None):
     """Renders scene to out; raises AssertionError unless exit 0 and silent."""
     status, _, err = run(tp2, list(options) + [scene, out] + [str(v) for v in size], env)
