@@ -65,6 +65,11 @@ class CaseFailed(Exception):
     """A check a case cannot go on without failed."""
 
 
+class CaseSkipped(Exception):
+    """The case cannot run here (its reason is the message): exit 77,
+    which ctest counts as skipped."""
+
+
 class Case:
     """One test case's temporary folder and failures."""
 
@@ -86,7 +91,8 @@ class Case:
 def run_cases(namespace, case_class=Case):
     """main() of a case script: `SCRIPT --list` prints the names of the
     functions case_NAME in namespace; `SCRIPT TP2 NAME` runs one in a fresh
-    folder and prints its failures. Returns the exit status."""
+    folder and prints its failures. Returns the exit status (77: skipped,
+    with the reason printed)."""
     cases = {n[5:]: f for n, f in namespace.items() if n.startswith("case_")}
     if sys.argv[1:] == ["--list"]:
         print("\n".join(cases))
@@ -101,6 +107,9 @@ def run_cases(namespace, case_class=Case):
             cases[name](c)
         except (CaseFailed, AssertionError) as e:
             c.failures.append(str(e))
+        except CaseSkipped as e:
+            print(f"SKIP {name}: {e}")
+            return 77
     for f in c.failures[:10]:
         print(f"FAIL {name}: {f}")
     if len(c.failures) > 10:
