@@ -2,7 +2,8 @@
 # through them: a stage never includes a later stage's header nor calls
 # its functions, and no files call each other round a circle (the test
 # host_layers, tests/check_layers.py, whose list of stages is this one).
-#   base    allocation, clocks, temporary files, small maths (no tp2 types)
+#   base    allocation, clocks, temporary files, small maths, test hooks
+#           (no tp2 types)
 #   scene   scene text -> struct scene: lexer, reader, parser, kind tables
 #   pack    struct scene -> the GPU's buffers: records, BVH, twins
 #   gpu     the Vulkan device: context, buffers, pipeline cache, SPIR-V
@@ -14,7 +15,8 @@ set(TP2_HOST ${CMAKE_CURRENT_LIST_DIR})
 set(TP2_BASE_SOURCES
   ${TP2_HOST}/base/big_alloc.c
   ${TP2_HOST}/base/clock.c
-  ${TP2_HOST}/base/tempfile.c)
+  ${TP2_HOST}/base/tempfile.c
+  ${TP2_HOST}/base/test_hooks.c)
 set(TP2_SCENE_SOURCES
   ${TP2_HOST}/scene/convex.c
   ${TP2_HOST}/scene/decimal.c
@@ -35,7 +37,6 @@ set(TP2_PACK_SOURCES
 set(TP2_GPU_SOURCES
   ${TP2_HOST}/gpu/pipeline_cache.c
   ${TP2_HOST}/gpu/spirv_exact.c
-  ${TP2_HOST}/gpu/spirv_fused.c
   ${TP2_HOST}/gpu/spirv_specialize.c
   ${TP2_HOST}/gpu/vk_buffer.c
   ${TP2_HOST}/gpu/vk_check.c

@@ -5,12 +5,15 @@
 folder and checks exit status, the message, and which files exist after."""
 import ctypes
 import os
+import pwd
 import select
+import shutil
 import signal
 import stat
 import struct
 import subprocess
 import sys
+import tempfile
 
 import tp2test
 from tp2test import run
@@ -476,29 +479,52 @@ def case_output_refused_before_render(c):
              f"left {os.listdir(c.tmp)}")
 
 
-def as_other_user():
-    """preexec_fn for a run without root's power to write anywhere: user
-    nobody when the tests run as root, else nothing to change."""
-    if os.geteuid() == 0:
-        os.setgid(65534)
-        os.setuid(65534)
+def other_user():
+    """(uid, gid) of user nobody, for a run without root's power to write
+    anywhere, when the tests run as root; None otherwise. Skips the case
+    where running as root and there is no such user."""
+    if os.geteuid() != 0:
+        return None
+    try:
+        nobody = pwd.getpwnam("nobody")
+    except KeyError:
+        raise tp2test.CaseSkipped("running as root, and there is no user nobody "
+                                  "to run tp2 as (root writes anywhere)")
+    return nobody.pw_uid, nobody.pw_gid
 
 
 def case_output_folder_read_only(c):
     """A read-only folder is refused before any Vulkan work (as user nobody
-    when the tests run as root, since root writes anywhere)."""
-    folder = c.out("ro")
-    os.mkdir(folder)
-    os.chmod(c.tmp, 0o755)
-    os.chmod(folder, 0o555)
-    out = os.path.join(folder, "out.ppm")
-    env = dict(os.environ, **NO_VULKAN)
-    r = subprocess.run([c.tp2, SCENE, out, "8", "6"], capture_output=True, env=env,
-                       preexec_fn=as_other_user, timeout=600)
-    err = r.stderr.decode("utf-8", "replace")
-    c.expect(r.returncode == 1, f"exit {r.returncode}")
-    c.expect(err == f"tp2: cannot write '{out}': {os.strerror(13)}\n", f"stderr {err!r}")
-    c.expect(os.listdir(folder) == [], f"left {os.listdir(folder)}")
+    when the tests run as root, since root writes anywhere). That user may
+    not be able to reach the checkout or the build (root's home is 0700),
+    so tp2 and the scene run from copies in a fresh folder under /tmp that
+    everyone may enter."""
+    user = other_user()
+    work = tempfile.mkdtemp(prefix="tp2-cli-", dir="/tmp" if os.path.isdir("/tmp") else None)
+    try:
+        os.chmod(work, 0o755)
+        tp2 = shutil.copy2(c.tp2, os.path.join(work, "tp2"))
+        scene = shutil.copy2(SCENE, os.path.join(work, "cli.txt"))
+        os.chmod(scene, 0o644)
+        folder = os.path.join(work, "ro")
+        os.mkdir(folder)
+        os.chmod(folder, 0o555)
+        out = os.path.join(folder, "out.ppm")
+
+        def drop():
+            if user:
+                os.setgid(user[1])
+                os.setuid(user[0])
+
+        env = dict(os.environ, **NO_VULKAN)
+        r = subprocess.run([tp2, scene, out, "8", "6"], capture_output=True, env=env,
+                           preexec_fn=drop, timeout=600)
+        err = r.stderr.decode("utf-8", "replace")
+        c.expect(r.returncode == 1, f"exit {r.returncode}")
+        c.expect(err == f"tp2: cannot write '{out}': {os.strerror(13)}\n", f"stderr {err!r}")
+        c.expect(os.listdir(folder) == [], f"left {os.listdir(folder)}")
+    finally:
+        shutil.rmtree(work)
 
 
 def case_output_mode_kept(c):

@@ -12,7 +12,7 @@ import re
 import sys
 
 import tp2test
-from tp2test import read_pfm, read_ppm, render, run, scene_file
+from tp2test import layer_env, read_pfm, read_ppm, render, run, scene_file
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
 import mesh  # noqa: E402  (bench/mesh.py: the OBJ generator)
@@ -1086,16 +1086,35 @@ def case_auto_double_on_cpu(c):
         c.expect(images["mixed"] != images["double"], f"{base}: mixed is double's bytes too")
 
 
+def expect_validation_above(c, err, layer):
+    """That err, from a run under layer_env(layer) with
+    VK_LOADER_DEBUG=layer, shows the validation layer above the device layer
+    for the instance and the device (the loader's own account of the
+    stack): validation sees tp2's calls, not the layer's."""
+    for call in ("vkCreateInstance", "vkCreateDevice"):
+        stack = err.split(f"{call} layer callstack setup to:", 1)
+        if not c.expect(len(stack) == 2, f"{layer}: no {call} layer stack in {err[-2000:]!r}"):
+            continue
+        top_down = stack[1].split("<Drivers>")[0].split("<Device>")[0]
+        names = re.findall(r"\b(VK_LAYER_\w+)\s*$", top_down, re.M)
+        ours = f"VK_LAYER_TP2_{layer}"
+        c.expect("VK_LAYER_KHRONOS_validation" in names and ours in names and
+                 names.index("VK_LAYER_KHRONOS_validation") < names.index(ours),
+                 f"{layer} {call}: layers top to bottom {names}")
+
+
 def expect_auto_is_float(c, env, why):
     """Under env, auto and mixed render float alone (the very bytes of
-    --precision float) and --stats says why."""
+    --precision float) and --stats says why. Returns the scene and auto's
+    stderr."""
     scene = scene_file(c.tmp, "s.txt", effects_scene())
-    outs = {}
+    outs, errs = {}, {}
     for name, options in (("auto", []), ("mixed", ["--precision", "mixed"]),
                           ("float", ["--precision", "float"])):
         outs[name] = os.path.join(c.tmp, name + ".pfm")
         status, _, err = run(c.tp2, ["--stats", *options, scene, outs[name], "40", "30"], env)
         c.require(status == 0, f"{name}: exit {status}: {err}")
+        errs[name] = err
         if name != "float":
             precision, again = auto_stats(err)
             c.expect(precision == f"float ({name}: {why})" and again is None,
@@ -1103,15 +1122,19 @@ def expect_auto_is_float(c, env, why):
     for name in ("auto", "mixed"):
         with open(outs[name], "rb") as a, open(outs["float"], "rb") as f:
             c.expect(a.read() == f.read(), f"{name} ({why}) differs from float")
-    return scene
+    return scene, errs["auto"]
 
 
 def case_auto_without_float64(c):
-    """On a device without shaderFloat64 (TP2_FLOAT64=0 hides it) auto and
-    mixed are float, and --stats says so; --precision double is refused, exit 1,
-    nothing written."""
-    env = {"TP2_FLOAT64": "0"}
-    scene = expect_auto_is_float(c, env, "the device has no shaderFloat64")
+    """On a device without shaderFloat64 (VK_LAYER_TP2_no_fp64 hides it from
+    lavapipe, and refuses a device or a shader module that would use it)
+    auto and mixed are float, and --stats says so; --precision double is
+    refused, exit 1, nothing written. The validation layer is above the
+    device layer (checked from the loader's account, VK_LOADER_DEBUG)."""
+    env = layer_env("no_fp64")
+    scene, err = expect_auto_is_float(c, {**env, "VK_LOADER_DEBUG": "layer"},
+                                      "the device has no shaderFloat64")
+    expect_validation_above(c, err, "no_fp64")
     out = os.path.join(c.tmp, "d.pfm")
     status, _, err = run(c.tp2, ["--precision", "double", scene, out, "40", "30"], env)
     c.expect(status == 1 and "has no shaderFloat64" in err and not os.path.exists(out),
@@ -1148,8 +1171,8 @@ def ppm_differences(a, b):
 
 def case_mixed_same_when_fused(c):
     """The same image on a device that rounds otherwise (issue 9 item 3):
-    TP2_FUSED=1 makes the shaders round as a GPU compiler that fuses
-    multiply-adds and dot products would (host/gpu/spirv_fused.h). On scenes
+    VK_LAYER_TP2_fused makes the shaders round as a GPU compiler that fuses
+    multiply-adds and dot products would (tests/layers/spirv_fused.h). On scenes
     built to make float fail, that flips float's decisions (pixels off by
     more than 8 levels between the two devices), while mixed's two images
     stay within one level of each other almost everywhere, with none off
@@ -1158,7 +1181,8 @@ def case_mixed_same_when_fused(c):
     than 8). quadric-far at this size has two pixels on the curve where
     its quadrics cross, 1e-7 of their distance apart, which float cannot
     order: the default's check of which crossing is nearer
-    (signature.glsl) must catch them."""
+    (signature.glsl) must catch them. The validation layer is above the
+    fused layer (checked from the loader's account, VK_LOADER_DEBUG)."""
     size = ("200", "150")
     float_flips = 0
     for name in ("glass-far-checker", "tir-chain", "refraction", "quadric-far"):
@@ -1168,15 +1192,19 @@ def case_mixed_same_when_fused(c):
         for label, options, env in (
                 ("exact", ["--precision", "double", "--bailout", "0"], {}),
                 ("float", ["--precision", "float"], {}),
-                ("float fused", ["--precision", "float"], {"TP2_FUSED": "1"}),
+                ("float fused", ["--precision", "float"],
+                 {**layer_env("fused"), "VK_LOADER_DEBUG": "layer"}),
                 ("mixed", ["--precision", "mixed"], {}),
-                ("mixed fused", ["--precision", "mixed"], {"TP2_FUSED": "1"})):
+                ("mixed fused", ["--precision", "mixed"], layer_env("fused"))):
             out[label] = os.path.join(c.tmp, f"{name}-{label.replace(' ', '-')}.ppm")
             status, _, err = run(c.tp2, ["--quiet", *options, scene, out[label], *size], env)
             c.require(status == 0, f"{name} {label}: exit {status}: {err}")
-            fused = re.findall(r"TP2_FUSED: (\d+) operations of the \w+ shader fused", err)
-            c.expect((len(fused) > 0) == ("fused" in label) and all(int(n) > 0 for n in fused),
-                     f"{name} {label}: {err!r}")
+            fused = [int(n) for n in re.findall(
+                r"VK_LAYER_TP2_fused: (\d+) operations fused in a module", err)]
+            c.expect((len(fused) > 0) == ("fused" in label) and max(fused, default=1) > 0,
+                     f"{name} {label}: {err[-2000:]!r}")
+            if label == "float fused":
+                expect_validation_above(c, err, "fused")
         float_flips += ppm_differences(out["float"], out["float fused"])[1]
         within1, bad8 = ppm_differences(out["mixed"], out["mixed fused"])
         c.expect(within1 >= 0.9995 and bad8 == 0,

@@ -1,7 +1,7 @@
 /* test_bvh.c: bvh_build on seeded sphere sets, checked against its
  * contract and against a linear scan. The last line is "N passed, M
  * failed"; the exit status is 0 only when nothing failed. */
-#define _POSIX_C_SOURCE 200809L /* setenv */
+#define _POSIX_C_SOURCE 200809L
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "test_hooks.h"
 #include "tp2_shared.h"
 
 #include "unit.h"
@@ -640,9 +641,9 @@ static void check_threads_agree(const char *name, const double (*s)[4], size_t n
                                 const struct bvh *b)
 {
     struct bvh one;
-    setenv("TP2_BVH_THREADS", "1", 1);
+    test_hooks_edit()->bvh_one_thread = true;
     int rc = sphere_bvh_build(s, n, &one);
-    unsetenv("TP2_BVH_THREADS");
+    test_hooks_edit()->bvh_one_thread = false;
     expect(rc == 0 && same_shape(b, &one) && one.node_count == b->node_count &&
                memcmp(one.nodes, b->nodes, b->node_count * sizeof *b->nodes) == 0 &&
                memcmp(one.order, b->order, n * sizeof *b->order) == 0,

@@ -3,12 +3,22 @@
  *
  * The callback must come once, after the physical device is chosen and
  * what it offers is known (props, float64: as they end up), and before
- * the logical device exists; never when no device is chosen. Prints
+ * the logical device exists; never when no device is chosen.
+ *
+ * With the argument no_fp64 it runs under VK_LAYER_TP2_no_fp64
+ * (tests/layers), as on a device without shaderFloat64: the callback sees
+ * none, and the layer refuses a shader module that declares Float64 (the
+ * double trace shader); a float module is made without a message (the
+ * validation layer checks a module's capabilities against the device's
+ * features when a pipeline is made, which the layer forestalls). Prints
  * "N passed, M failed" last. */
-#define _POSIX_C_SOURCE 200809L
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "trace_double_basic_spv.h"
+#include "trace_float_basic_spv.h"
 #include "vk_context.h"
 
 #include "unit.h"
@@ -53,18 +63,48 @@ static int chosen_with(int device_index, struct seen *s)
     return rc;
 }
 
-int main(void)
+/* Makes a shader module of `bytes` of code on a validated context's
+ * device; its result, and the validation messages it drew in *messages. */
+static VkResult module_of(const uint32_t *code, size_t bytes, unsigned *messages)
+{
+    struct vkc c;
+    struct vkc_options opt = {.device_index = -1, .validate = true};
+    VkResult r = VK_ERROR_INITIALIZATION_FAILED;
+    *messages = 0;
+    if (vkc_create(&c, &opt) == 0) {
+        unsigned before = vkc_validation_message_count();
+        VkShaderModuleCreateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+            .codeSize = bytes,
+            .pCode = code,
+        };
+        VkShaderModule module = VK_NULL_HANDLE;
+        r = vkCreateShaderModule(c.device, &info, NULL, &module);
+        if (r == VK_SUCCESS)
+            vkDestroyShaderModule(c.device, module, NULL);
+        *messages = vkc_validation_message_count() - before;
+    }
+    vkc_destroy(&c);
+    return r;
+}
+
+int main(int argc, char **argv)
 {
     struct seen s;
     /* The tests pick lavapipe (VK_ICD_FILENAMES): a CPU device with
-     * shaderFloat64. */
+     * shaderFloat64, unless the layer hides it. */
+    bool hidden = argc > 1 && strcmp(argv[1], "no_fp64") == 0;
     CHECK(chosen_with(-1, &s) == 0);
-    CHECK(s.type == VK_PHYSICAL_DEVICE_TYPE_CPU && s.float64);
-    setenv("TP2_FLOAT64", "0", 1); /* as a device without it */
-    CHECK(chosen_with(-1, &s) == 0);
-    CHECK(!s.float64);
-    unsetenv("TP2_FLOAT64");
+    CHECK(s.type == VK_PHYSICAL_DEVICE_TYPE_CPU && s.float64 == !hidden);
     CHECK(chosen_with(99, &s) != 0); /* no such device: never chosen */
     expect(s.calls == 0, "no device, yet %d calls", s.calls);
+    if (hidden) {
+        unsigned messages;
+        VkResult r = module_of(tp2_trace_double_basic, sizeof tp2_trace_double_basic, &messages);
+        expect(r == VK_ERROR_FEATURE_NOT_PRESENT, "a Float64 module: %d", (int)r);
+        r = module_of(tp2_trace_float_basic, sizeof tp2_trace_float_basic, &messages);
+        expect(r == VK_SUCCESS && messages == 0, "a float module: %d, %u messages", (int)r,
+               messages);
+    }
     return unit_report();
 }

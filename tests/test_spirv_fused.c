@@ -1,11 +1,17 @@
-/* test_spirv_fused.c: the rewrite that makes tp2's shaders round as a
- * device that fuses multiply-adds (spirv_fused, for TP2_FUSED=1). On each
- * of the six embedded trace shaders: operations are rewritten, the result is a
- * well-formed module that declares Float64 once and defines every id once
- * (SSA), its id bound covers every id, and a second pass finds nothing
- * left to fuse. Malformed modules are refused. (That the rewritten shader
- * is valid SPIR-V that renders is checked under the validation layer by
- * effect_auto_same_when_fused.) */
+/* test_spirv_fused.c: the rewrite with which VK_LAYER_TP2_fused
+ * (tests/layers) makes shaders round as a device that fuses multiply-adds
+ * (spirv_fused.h). On each of the six embedded trace shaders: operations
+ * are rewritten, the result is a well-formed module that declares Float64
+ * once and defines every id once (SSA), its id bound covers every id,
+ * and a second pass finds nothing left to fuse; SPIRV-Tools' validator
+ * accepts the two curved builds' results (the other builds' code is part
+ * of theirs; 0.2 s a module; the validation layer, above the fused layer,
+ * sees only tp2's own modules). Operations decorated NoContraction (GLSL
+ * `precise`) are left alone: with every sum, difference and dot product
+ * so decorated, or every product and dot product, nothing is fused.
+ * Malformed modules are refused.
+ * (That rewritten shaders render is checked under the layer by
+ * effect_mixed_same_when_fused.) */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +26,52 @@
 #include "unit.h"
 #include "spirv_test.h"
 
-enum { HEADER = 5, OP_CAPABILITY = 17, FLOAT64 = 10 };
+enum {
+    HEADER = 5,
+    OP_CAPABILITY = 17,
+    FLOAT64 = 10,
+    OP_DECORATE = 71,
+    NO_CONTRACTION = 42,
+};
+
+/* A copy of the module with every result of the opcodes `ops` (0-ended)
+ * decorated NoContraction, before its first OpDecorate; *words its
+ * length. */
+static uint32_t *decorated(const uint32_t *code, size_t n, const uint32_t *ops, size_t *words)
+{
+    uint32_t *out = malloc((n * 2) * sizeof *out);
+    size_t o = HEADER, first = 0;
+    memcpy(out, code, HEADER * sizeof *out);
+    for (size_t at = HEADER; at < n; at += code[at] >> 16)
+        if ((code[at] & 0xffffu) == OP_DECORATE && !first)
+            first = at;
+    for (size_t at = HEADER; at < n; at += code[at] >> 16) {
+        if (at == first)
+            for (size_t k = HEADER; k < n; k += code[k] >> 16)
+                for (const uint32_t *op = ops; *op; op++)
+                    if ((code[k] & 0xffffu) == *op) {
+                        out[o++] = (3u << 16) | OP_DECORATE;
+                        out[o++] = code[k + 2];
+                        out[o++] = NO_CONTRACTION;
+                    }
+        memcpy(out + o, code + at, (code[at] >> 16) * sizeof *out);
+        o += code[at] >> 16;
+    }
+    *words = o;
+    return out;
+}
+
+/* Nothing of the module is fused once `ops`' results are NoContraction. */
+static void check_precise_kept(const char *what, const uint32_t *code, size_t bytes,
+                               const uint32_t *ops)
+{
+    size_t words, out_words, sites = 99;
+    uint32_t *precise = decorated(code, bytes / 4, ops, &words);
+    uint32_t *out = spirv_fused(precise, words, &out_words, &sites);
+    expect(out && sites == 0, "%s NoContraction: %zu operations fused", what, sites);
+    free(out);
+    free(precise);
+}
 
 /* Opcodes that define a result id in word 2 (with a type in word 1), or
  * in word 1 (types, imports, labels): enough of the grammar to find
@@ -38,7 +89,7 @@ static int defined_id(const uint32_t *op)
     return -1;
 }
 
-static void check_shader(const char *name, const uint32_t *code, size_t bytes)
+static void check_shader(const char *name, const uint32_t *code, size_t bytes, bool validate)
 {
     size_t words = bytes / 4, out_words = 0, sites = 0;
     uint32_t *out = spirv_fused(code, words, &out_words, &sites);
@@ -71,6 +122,8 @@ static void check_shader(const char *name, const uint32_t *code, size_t bytes)
     expect(float64 == 1, "%s: Float64 declared once (%d)", name, float64);
     expect(twice == 0, "%s: %d ids defined twice", name, twice);
     expect(beyond == 0, "%s: %d ids past the bound", name, beyond);
+    if (validate)
+        expect(spirv_valid(name, out, out_words), "%s: valid SPIR-V", name);
     size_t again_words = 0, again = 99;
     uint32_t *second = spirv_fused(out, out_words, &again_words, &again);
     expect(second && again == 0, "%s: a second pass fuses %zu more", name, again);
@@ -80,12 +133,17 @@ static void check_shader(const char *name, const uint32_t *code, size_t bytes)
 
 int main(void)
 {
-    check_shader("float", tp2_trace_float, sizeof tp2_trace_float);
-    check_shader("float curved", tp2_trace_float_curved, sizeof tp2_trace_float_curved);
-    check_shader("double", tp2_trace_double, sizeof tp2_trace_double);
-    check_shader("double curved", tp2_trace_double_curved, sizeof tp2_trace_double_curved);
-    check_shader("float basic", tp2_trace_float_basic, sizeof tp2_trace_float_basic);
-    check_shader("double basic", tp2_trace_double_basic, sizeof tp2_trace_double_basic);
+    check_shader("float", tp2_trace_float, sizeof tp2_trace_float, false);
+    check_shader("float curved", tp2_trace_float_curved, sizeof tp2_trace_float_curved, true);
+    check_shader("double", tp2_trace_double, sizeof tp2_trace_double, false);
+    check_shader("double curved", tp2_trace_double_curved, sizeof tp2_trace_double_curved,
+                 true);
+    check_shader("float basic", tp2_trace_float_basic, sizeof tp2_trace_float_basic, false);
+    check_shader("double basic", tp2_trace_double_basic, sizeof tp2_trace_double_basic, false);
+    check_precise_kept("sums and dot products", tp2_trace_float_curved,
+                       sizeof tp2_trace_float_curved, (const uint32_t[]){129, 131, 148, 0});
+    check_precise_kept("products and dot products", tp2_trace_float_curved,
+                       sizeof tp2_trace_float_curved, (const uint32_t[]){133, 142, 148, 0});
     spirv_check_refused(spirv_fused, tp2_trace_float, sizeof tp2_trace_float);
     return unit_report();
 }

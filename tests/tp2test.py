@@ -15,6 +15,15 @@ def run(tp2, args, env=None, timeout=600):
     return r.returncode, r.stdout.decode("utf-8", "replace"), r.stderr.decode("utf-8", "replace")
 
 
+def layer_env(layer):
+    """The environment that runs tp2 on lavapipe as the device a test layer
+    makes of it (tests/layers: "no_fp64" or "fused"), below the validation
+    layer, so that validation sees tp2's own calls."""
+    folder = os.environ.get("TP2_TEST_LAYERS")
+    assert folder, "TP2_TEST_LAYERS is not set: run the tests through ctest"
+    return {"XDG_DATA_HOME": os.path.join(folder, layer)}
+
+
 def render(tp2, scene, out, size=(), options=(), env=None):
     """Renders scene to out; raises AssertionError unless exit 0 and silent."""
     status, _, err = run(tp2, list(options) + [scene, out] + [str(v) for v in size], env)
@@ -56,6 +65,11 @@ class CaseFailed(Exception):
     """A check a case cannot go on without failed."""
 
 
+class CaseSkipped(Exception):
+    """The case cannot run here (its reason is the message): exit 77,
+    which ctest counts as skipped."""
+
+
 class Case:
     """One test case's temporary folder and failures."""
 
@@ -77,7 +91,8 @@ class Case:
 def run_cases(namespace, case_class=Case):
     """main() of a case script: `SCRIPT --list` prints the names of the
     functions case_NAME in namespace; `SCRIPT TP2 NAME` runs one in a fresh
-    folder and prints its failures. Returns the exit status."""
+    folder and prints its failures. Returns the exit status (77: skipped,
+    with the reason printed)."""
     cases = {n[5:]: f for n, f in namespace.items() if n.startswith("case_")}
     if sys.argv[1:] == ["--list"]:
         print("\n".join(cases))
@@ -92,6 +107,9 @@ def run_cases(namespace, case_class=Case):
             cases[name](c)
         except (CaseFailed, AssertionError) as e:
             c.failures.append(str(e))
+        except CaseSkipped as e:
+            print(f"SKIP {name}: {e}")
+            return 77
     for f in c.failures[:10]:
         print(f"FAIL {name}: {f}")
     if len(c.failures) > 10:

@@ -1,6 +1,6 @@
 #include "cli.h"
 
-#include "env.h"
+#include "test_hooks.h"
 #include "lexer.h"
 #include "scene.h"
 #include "usage.h"
@@ -124,7 +124,7 @@ int cli_parse(int argc, char **argv, struct cli *c)
     memset(c, 0, sizeof *c);
     c->device_index = -1;
     c->bailout = -1; /* not given: set below from the precision */
-    c->validate = env_is("TP2_VALIDATE", "1");
+    c->validate = test_hooks()->validate;
     const char *positional[4];
     int npos = 0;
     bool options_done = false;

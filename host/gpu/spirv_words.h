@@ -1,5 +1,6 @@
 /* spirv_words.h: walking a SPIR-V module word by word, shared by the
- * passes that rewrite tp2's shaders (spirv_fused.c, spirv_specialize.c). */
+ * passes that rewrite tp2's shaders (spirv_specialize.c here; the fused test
+ * layer's tests/layers/spirv_fused.c). */
 #ifndef TP2_SPIRV_WORDS_H
 #define TP2_SPIRV_WORDS_H
 

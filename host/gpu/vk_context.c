@@ -5,7 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "env.h"
+#include "test_hooks.h"
 #include "lexer.h"
 #include "vk_check.h"
 
@@ -381,11 +381,11 @@ static bool device_has_extension(VkPhysicalDevice physical, const char *name)
 /* A CPU device's memory is the host's: reading the packed scene where it
  * lies saves copying it (and its page faults) into memory of the same
  * kind. A GPU would read it across the bus on every ray, so there the
- * scene is copied. TP2_HOST_IMPORT=0 turns this off (the tests compare). */
+ * scene is copied. The test hook TP2_HOST_IMPORT=0 turns this off. */
 static bool wants_host_import(const struct vkc *c)
 {
     return c->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-           !env_is("TP2_HOST_IMPORT", "0") &&
+           !test_hooks()->no_host_import &&
            device_has_extension(c->physical, VK_EXT_EXTERNAL_MEMORY_HOST_EXTENSION_NAME);
 }
 
@@ -393,10 +393,6 @@ static int create_device(struct vkc *c, const struct vkc_options *opt)
 {
     VkPhysicalDeviceFeatures have;
     vkGetPhysicalDeviceFeatures(c->physical, &have);
-    /* TP2_FLOAT64=0 hides the feature, so that tests reach what a device
-     * without it does (lavapipe has it). */
-    if (env_is("TP2_FLOAT64", "0"))
-        have.shaderFloat64 = VK_FALSE;
     if (opt->need_float64 && !have.shaderFloat64) {
         fprintf(stderr, "tp2: device '%s' has no shaderFloat64, so it "
                         "cannot render --precision double; choose another "

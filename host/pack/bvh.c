@@ -1,7 +1,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bvh.h"
 #include "big_alloc.h"
-#include "env.h"
+#include "test_hooks.h"
 #include "tp2_shared.h"
 
 #include <float.h>
@@ -510,11 +510,11 @@ static size_t build_halves(struct prim *prims, struct task kids[2],
     return 1 + h[0].count + h[1].count;
 }
 
-/* Two threads where there are two cores, unless TP2_BVH_THREADS=1 (so
- * that tests can compare both builds). */
+/* Two threads where there are two cores, unless a unit test asks for one
+ * (test_hooks.h: to compare both builds). */
 static bool two_threads(void)
 {
-    return !env_is("TP2_BVH_THREADS", "1") && sysconf(_SC_NPROCESSORS_ONLN) > 1;
+    return !test_hooks()->bvh_one_thread && sysconf(_SC_NPROCESSORS_ONLN) > 1;
 }
 
 static void box_of_array(const void *source, size_t i, double box[6])

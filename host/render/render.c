@@ -12,9 +12,9 @@
 
 #include "big_alloc.h"
 #include "clock.h"
-#include "env.h"
 #include "gpu_layout.h"
 #include "scene_pack.h"
+#include "test_hooks.h"
 #include "vk_check.h"
 
 /* Camera samples per submission on a GPU: bounds the work of one
@@ -33,13 +33,13 @@
  * time (2 CPUs: it slows the other) and saves all of it where a pixel is
  * marked. At 1920 x 1080 all 20 bench scenes (showpiece aside) marked
  * some, at 400 x 300 9 of 36 scenes and corpus files marked none. The
- * environment variable of that name replaces it (tests). */
+ * test hook of that name replaces it (test_hooks.h). */
 #define TP2_EAGER_RETRACE (1 << 20)
 
 static double eager_retrace_samples(void)
 {
-    const char *env = getenv("TP2_EAGER_RETRACE");
-    return env && *env ? atof(env) : TP2_EAGER_RETRACE;
+    const struct test_hooks *h = test_hooks();
+    return h->eager_retrace_set ? h->eager_retrace : TP2_EAGER_RETRACE;
 }
 
 /* Largest band buffer in bytes: whole images no longer have to fit one
@@ -64,29 +64,16 @@ static double eager_retrace_samples(void)
 #define TP2_STATS_WORDS (2 * TP2_STAT_COUNT + TP2_COUNTER_COUNT)
 #define TP2_STATS_BYTES (TP2_STATS_WORDS * sizeof(uint32_t))
 
-/* limit, or the environment variable name's value where it is a smaller
- * unsigned number: tests lower device limits this way to reach them with
- * small scenes and images. */
-static VkDeviceSize lowered_by_env(const char *name, VkDeviceSize limit)
-{
-    const char *env = getenv(name);
-    char *end;
-    unsigned long long v = env ? strtoull(env, &end, 10) : 0;
-    if (env && *env >= '0' && *env <= '9' && *end == '\0' && v < limit)
-        return v;
-    return limit;
-}
-
 /* The band buffer's byte limit on this device: TP2_BAND_BYTES, or less
- * where the device's storage-buffer range is smaller. The environment
- * variable TP2_BAND_BYTES may lower it, so that tests can render small
+ * where the device's storage-buffer range is smaller. The test hook
+ * TP2_BAND_BYTES may lower it, so that tests can render small
  * images in many bands (below one band of TP2_GROUP_Y rows, bands have
  * TP2_GROUP_Y rows). */
 static VkDeviceSize band_bytes_max(const struct vkc *vk)
 {
     VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
     VkDeviceSize max = range < TP2_BAND_BYTES ? range : TP2_BAND_BYTES;
-    return lowered_by_env("TP2_BAND_BYTES", max);
+    return hook_lowered(test_hooks()->band_bytes, max);
 }
 
 /* The input bindings whose layout depends on the precision (layout.glsl's
@@ -331,18 +318,16 @@ static void renderer_destroy(struct renderer *r)
 }
 
 /* Rays per walk per pass to begin with: TP2_CPU_PASS_RAYS on CPU devices,
- * a whole tree elsewhere. The environment variable TP2_PASS_RAYS sets it
+ * a whole tree elsewhere. The test hook TP2_PASS_RAYS sets it
  * on CPU devices and has walks start in passes at once (not after a cut
  * whole-tree pass), so that tests can make walks go on across passes. */
 static int pass_rays(bool loop_guard, bool *walking)
 {
-    const char *env = getenv("TP2_PASS_RAYS");
-    char *end;
-    long v = env ? strtol(env, &end, 10) : 0;
+    long v = test_hooks()->pass_rays;
     *walking = false;
     if (!loop_guard)
         return TP2_MAX_RAYS;
-    if (env && *env >= '1' && *env <= '9' && *end == '\0' && v <= TP2_MAX_RAYS) {
+    if (v > 0 && v <= TP2_MAX_RAYS) {
         *walking = true;
         return (int)v;
     }
@@ -366,13 +351,13 @@ static int check_band_fits(const struct vkc *vk, int width)
     return 0;
 }
 
-/* The device's storage-buffer range; the environment variable
+/* The device's storage-buffer range; the test hook
  * TP2_STORAGE_RANGE may lower it, so that tests can reach the limit with
  * small scenes. */
 static VkDeviceSize storage_range(const struct vkc *vk)
 {
     VkDeviceSize range = vk->props.limits.maxStorageBufferRange;
-    return lowered_by_env("TP2_STORAGE_RANGE", range);
+    return hook_lowered(test_hooks()->storage_range, range);
 }
 
 /* The device's texel-buffer limit, in texels; TP2_TEXEL_ELEMENTS may lower
@@ -380,7 +365,7 @@ static VkDeviceSize storage_range(const struct vkc *vk)
 static VkDeviceSize texel_elements(const struct vkc *vk)
 {
     VkDeviceSize max = vk->props.limits.maxTexelBufferElements;
-    return lowered_by_env("TP2_TEXEL_ELEMENTS", max);
+    return hook_lowered(test_hooks()->texel_elements, max);
 }
 
 /* Every scene buffer must fit its binding (a storage buffer's range, a
@@ -621,7 +606,7 @@ static void device_job_init(struct device_job *job, struct vkc *vk,
         .opt = {
             .device_index = asked->device_index,
             .need_float64 = asked->use_double && !asked->double_where,
-            .want_float64 = asked->use_double || asked->retrace || fused_requested(),
+            .want_float64 = asked->use_double || asked->retrace,
             .validate = asked->validate,
             .chosen = device_chosen,
             .chosen_user = job,
@@ -753,7 +738,7 @@ int render_scene(const struct scene *s, const struct render_options *asked,
      * whatever the scene (tests). A scene that needs double on a device
      * without it is refused below. */
     bool early = known && device.rc == 0 && (!opt->use_double || r.vk.float64) &&
-                 (!pack_done(&packing) || env_is("TP2_EARLY_PIPELINES", "1"));
+                 (!pack_done(&packing) || test_hooks()->early_pipelines);
     int made_rc = 0;
     t.make_start = clock_seconds();
     if (early) {

@@ -5,14 +5,15 @@
 #define _POSIX_C_SOURCE 200809L
 #include "renderer.h"
 
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "clock.h"
-#include "env.h"
 #include "gpu_layout.h"
 #include "progress.h"
 #include "retrace.h"
+#include "test_hooks.h"
 #include "vk_check.h"
 
 /* Most slabs a dispatch is cut into: lavapipe runs at most 16 or 32
@@ -30,15 +31,26 @@
  * thread's run, a slab of z, holds every slabs-th row of the band,
  * spread over all of it. Lavapipe's threads are LP_NUM_THREADS or one
  * per CPU; GPUs give workgroups to whatever unit is free: one slab. The
- * environment variable TP2_DISPATCH_SLABS sets the count (tests). The
+ * test hook TP2_DISPATCH_SLABS sets the count. The
  * shader has it as a specialization constant: read from gl_NumWorkGroups
  * it made spheres.txt's float render 20% slower on lavapipe. */
+/* Lavapipe's thread count: LP_NUM_THREADS where it is a whole number,
+ * else one per CPU. */
+static long lavapipe_threads(void)
+{
+    const char *env = getenv("LP_NUM_THREADS");
+    char *end;
+    long n = env && *env ? strtol(env, &end, 10) : 0;
+    return env && *env && *end == '\0' ? n : sysconf(_SC_NPROCESSORS_ONLN);
+}
+
 uint32_t dispatch_slabs(const struct vkc *vk)
 {
     long n = 1;
     if (vk->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
-        n = env_number("LP_NUM_THREADS", sysconf(_SC_NPROCESSORS_ONLN));
-    n = env_number("TP2_DISPATCH_SLABS", n);
+        n = lavapipe_threads();
+    if (test_hooks()->dispatch_slabs_set)
+        n = test_hooks()->dispatch_slabs;
     return n < 1 ? 1 : n > TP2_MAX_SLABS ? TP2_MAX_SLABS : (uint32_t)n;
 }
 

@@ -9,13 +9,12 @@
 #include <stdlib.h>
 
 #include "clock.h"
-#include "env.h"
+#include "test_hooks.h"
 #include "finish_spv.h"
 #include "gpu_layout.h"
 #include "kinds.h"
 #include "pipeline_cache.h"
 #include "spirv_exact.h"
-#include "spirv_fused.h"
 #include "spirv_specialize.h"
 #include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
@@ -26,12 +25,11 @@
 #include "vk_check.h"
 
 /* Whether shadow rays toward the arealight test the last sample's occluder
- * first (trace.comp): the image is the same either way, and the
- * environment variable TP2_OCCLUDER_HINT=0 turns it off so that a test can
- * show it. */
+ * first (trace.comp): the image is the same either way, and the test hook
+ * TP2_OCCLUDER_HINT=0 turns it off so that a test can show it. */
 static bool occluder_hint(void)
 {
-    return !env_is("TP2_OCCLUDER_HINT", "0");
+    return !test_hooks()->no_occluder_hint;
 }
 
 /* The specialization constants of tp2_shared.h, indexed by id: booleans
@@ -73,13 +71,6 @@ static int kind_tier(const struct scene_features *f)
     TP2_SHAPES(TP2_TIER_OF_)
 #undef TP2_TIER_OF_
     return tier;
-}
-
-/* Whether TP2_FUSED=1 asks for the shaders to round as a device that
- * fuses multiply-adds (spirv_fused.h; for tests). */
-bool fused_requested(void)
-{
-    return env_is("TP2_FUSED", "1");
 }
 
 /* The SPIR-V builds (CMakeLists.txt), by precision (double: 1) and tier. */
@@ -129,7 +120,7 @@ static int create_layouts(struct renderer *r)
     return 0;
 }
 
-/* Pass t's code rewritten by `pass` (spirv_exact or spirv_fused), which
+/* Pass t's code rewritten by `pass` (spirv_exact), which
  * t then owns. Returns the pass's count of sites, or (size_t)-1 after
  * saying `doing` failed. */
 static size_t rewrite(struct tracer *t,
@@ -154,11 +145,6 @@ static int choose_code(struct renderer *r)
 {
     int tier = kind_tier(&r->features);
     struct tracer *passes[2];
-    bool fused = fused_requested();
-    if (fused && !r->vk.float64) {
-        fprintf(stderr, "tp2: TP2_FUSED=1 needs a device with shaderFloat64\n");
-        return -1;
-    }
     for (int k = 0, n = tracers(r, passes); k < n; k++) {
         struct tracer *t = passes[k];
         t->code = builds[t->use_double][tier].code;
@@ -166,13 +152,6 @@ static int choose_code(struct renderer *r)
         if (t->use_double &&
             rewrite(t, spirv_exact, "making the double shader exact") == (size_t)-1)
             return -1;
-        if (!fused)
-            continue;
-        size_t sites = rewrite(t, spirv_fused, "rewriting the shader for TP2_FUSED");
-        if (sites == (size_t)-1)
-            return -1;
-        fprintf(stderr, "tp2: TP2_FUSED: %zu operations of the %s shader fused\n", sites,
-                t->use_double ? "double" : "float");
     }
     return 0;
 }
@@ -180,12 +159,12 @@ static int choose_code(struct renderer *r)
 /* Pass t's shader module for a pipeline with the specialization constants
  * `values`: its code without what they rule out (spirv_specialize.h; a
  * pipeline made 1.5-3 times faster on lavapipe, README "Performance"),
- * or as it is where that fails or TP2_SPECIALIZE=0 (to compare). */
+ * or as it is where that fails or under the test hook TP2_SPECIALIZE=0. */
 static VkResult create_module(const struct renderer *r, const struct tracer *t,
                               const int32_t values[TP2_SPEC_COUNT], VkShaderModule *module)
 {
     size_t words = t->words;
-    uint32_t *specialized = env_is("TP2_SPECIALIZE", "0")
+    uint32_t *specialized = test_hooks()->no_specialize
                                 ? NULL
                                 : spirv_specialize(t->code, t->words, values, TP2_SPEC_COUNT,
                                                    &words);

@@ -105,8 +105,6 @@ static inline int tracers(struct renderer *r, struct tracer *passes[2])
 /* render_pipelines.c: each pass's SPIR-V and pipelines, the layouts and
  * the finish pipeline. Each returns 0, or -1 after printing a message. */
 
-/* Whether TP2_FUSED=1 asks the shaders to round as a fusing device. */
-bool fused_requested(void);
 /* The layouts, the finish pipeline (beside, on a thread) and the passes'. */
 int make_pipelines(struct renderer *r);
 /* The passes' code and the band pass's first pipeline. */

@@ -11,6 +11,7 @@ enum {
     OP_TYPE_FLOAT = 22,
     OP_TYPE_VECTOR = 23,
     OP_FUNCTION = 54,
+    OP_DECORATE = 71,
     OP_FCONVERT = 115,
     OP_FADD = 129,
     OP_FSUB = 131,
@@ -18,6 +19,7 @@ enum {
     OP_VECTOR_TIMES_SCALAR = 142,
     OP_DOT = 148,
     CAPABILITY_FLOAT64 = 10,
+    DECORATION_NO_CONTRACTION = 42,
     MAX_COMPONENTS = 4,
     /* the most words one rewritten operation becomes */
     SITE_WORDS = 4 * 3 + 5 * 2 + 4,
@@ -30,6 +32,7 @@ struct id_info {
     uint32_t type;                /* the type of the value it names (0: not known) */
     uint32_t product_op, a, b;    /* a product's opcode and factors (op 0: none) */
     uint32_t float_count;         /* a float32 type: 1, or its vector's size (0: other) */
+    bool no_contraction;          /* decorated NoContraction (GLSL `precise`) */
 };
 
 struct module {
@@ -62,6 +65,9 @@ static void scan(struct module *m)
         uint32_t count = c[at] >> 16, op = c[at] & 0xffffu;
         if (op == OP_CAPABILITY && count == 2 && c[at + 1] == CAPABILITY_FLOAT64)
             m->has_float64 = true;
+        if (op == OP_DECORATE && count == 3 && c[at + 1] < m->bound &&
+            c[at + 2] == DECORATION_NO_CONTRACTION)
+            m->ids[c[at + 1]].no_contraction = true;
         if (op == OP_TYPE_FLOAT && count == 3 && c[at + 1] < m->bound) {
             if (c[at + 2] == 32)
                 m->ids[c[at + 1]].float_count = 1;
@@ -111,7 +117,8 @@ static uint32_t widened(struct module *m, uint32_t **out, uint32_t value, uint32
 static bool rewrite(struct module *m, const uint32_t *c, uint32_t **out, uint32_t *next)
 {
     uint32_t op = c[0] & 0xffffu, type = c[1], result = c[2], x = c[3], y = c[4];
-    if ((c[0] >> 16) != 5 || x >= m->bound || y >= m->bound || floats(m, type) == 0)
+    if ((c[0] >> 16) != 5 || x >= m->bound || y >= m->bound || floats(m, type) == 0 ||
+        result >= m->bound || m->ids[result].no_contraction)
         return false;
     uint32_t wide;
     if (op == OP_DOT) {
@@ -121,8 +128,10 @@ static bool rewrite(struct module *m, const uint32_t *c, uint32_t **out, uint32_
         wide = (*next)++;
         *out = emit(*out, OP_DOT, 4, (uint32_t[]){m->dtype[1], wide, u, v});
     } else {
-        bool first = m->ids[x].product_op && m->ids[x].type == type;
-        bool second = m->ids[y].product_op && m->ids[y].type == type;
+        bool first = m->ids[x].product_op && m->ids[x].type == type &&
+                     !m->ids[x].no_contraction;
+        bool second = m->ids[y].product_op && m->ids[y].type == type &&
+                      !m->ids[y].no_contraction;
         if (!first && !second)
             return false;
         const struct id_info *p = &m->ids[first ? x : y];

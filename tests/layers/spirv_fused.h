@@ -1,5 +1,5 @@
 /* spirv_fused.h: a shader rewritten to round as a device that fuses float
- * arithmetic would. */
+ * arithmetic would (the rewrite of VK_LAYER_TP2_fused, fused.c). */
 #ifndef TP2_SPIRV_FUSED_H
 #define TP2_SPIRV_FUSED_H
 
@@ -8,11 +8,12 @@
 
 /* GPU compilers contract a * b + c into one fused multiply-add (one
  * rounding instead of two) and compute dot products in fused chains,
- * where the shader does not forbid it; lavapipe never does (gallivm lowers
- * even an explicit fma to a multiply and an add). To render here as such a
- * device would, every 32-bit float sum or difference of a product (OpFAdd
- * or OpFSub with an OpFMul or OpVectorTimesScalar of its type as an
- * operand), and every 32-bit OpDot, is computed in double and rounded to
+ * where the shader does not forbid it (NoContraction, GLSL `precise`);
+ * lavapipe never does (gallivm lowers even an explicit fma to a multiply
+ * and an add). To render here as such a device would, every 32-bit float
+ * sum or difference of a product (OpFAdd or OpFSub with an OpFMul or
+ * OpVectorTimesScalar of its type as an operand), and every 32-bit OpDot,
+ * neither decorated NoContraction, is computed in double and rounded to
  * float once: a product of floats is exact in double, so this is a fused
  * multiply-add (up to a rare double rounding), and a dot product with one
  * rounding.
@@ -20,8 +21,7 @@
  * Returns a malloc'd copy of the SPIR-V module `code` of `words` 32-bit
  * words so rewritten (*out_words its length, *sites how many operations
  * were rewritten); it needs the device's shaderFloat64. NULL when the
- * module is malformed or memory runs out. Used only under TP2_FUSED=1
- * (tests/check_effects.py, README "Accuracy"). */
+ * module is malformed or memory runs out. */
 uint32_t *spirv_fused(const uint32_t *code, size_t words, size_t *out_words, size_t *sites);
 
 #endif
