@@ -230,13 +230,21 @@ void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 
 
 // ---- plane: a = unit normal, distance ----------------------------------
 
+// Where the ray's line meets n.x + dist = 0, denom = n.d != 0: the one
+// formula every surface of a coincident group is met by (host/ties.h), so
+// that all give one distance, bit for bit.
+real plane_cross(rvec4 plane, rvec3 o, real denom)
+{
+    return -(rdot(plane.xyz, o) + plane.w) / denom;
+}
+
 // t > 0 where the ray meets n.x + dist = 0.
 real plane_t(rvec4 plane, rvec3 o, rvec3 d)
 {
     real denom = rdot(plane.xyz, d);
     if (denom == 0.0)
         return NO_HIT;
-    real t = -(rdot(plane.xyz, o) + plane.w) / denom;
+    real t = plane_cross(plane, o, denom);
     return t > 0.0 ? t : NO_HIT;
 }
 
@@ -345,12 +353,41 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // slab between the caps. Its radius at height z along the axis is
 // r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
+// A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP; its
+// record's length is then negative) is met by plane_cross on that face's
+// plane, from the ray as it came (o_ray), so that the two tie exactly:
+// s is clipped by the caps after the side.
+void clip_twin_caps(int i, inout Span s, rvec3 o_ray, rvec3 d, real oa, real da, real h,
+                    real t0)
+{
+    if (da == 0.0) {
+        if (oa < 0.0 || oa > h)
+            s.t_in = NO_HIT;
+        return;
+    }
+    ivec4 ids = object_ids(i);
+    rvec4 lo_plane = extra_row(ids.w), hi_plane = extra_row(ids.w + 1);
+    real lo_denom = rdot(lo_plane.xyz, d), hi_denom = rdot(hi_plane.xyz, d);
+    real t_lo = (ids.x & TP2_SHAPE_TWIN_BASE) != 0 && lo_denom != 0.0
+                    ? plane_cross(lo_plane, o_ray, lo_denom)
+                    : (0.0 - oa) / da + t0;
+    real t_hi = (ids.x & TP2_SHAPE_TWIN_TOP) != 0 && hi_denom != 0.0
+                    ? plane_cross(hi_plane, o_ray, hi_denom)
+                    : (h - oa) / da + t0;
+    if (da > 0.0)
+        clip(s, t_lo, t_hi, 1, 2, float(da));
+    else
+        clip(s, t_hi, t_lo, 2, 1, float(-da));
+}
+
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    real h = axis.w;
+    bool twin = axis.w < 0.0; // a cap in another object's face
+    real h = abs(axis.w);
     real k = (r1 - base.w) / h;
+    rvec3 o_ray = o;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
@@ -360,7 +397,8 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
     Span s = WHOLE_LINE;
-    clip_slab(s, oa, da, 0.0, h, 1, 2);
+    if (!twin)
+        clip_slab(s, oa, da, 0.0, h, 1, 2);
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
@@ -382,6 +420,8 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
+    if (twin)
+        clip_twin_caps(i, s, o_ray, d, oa, da, h, t0);
     return convex_hit(s, on, inward, part);
 }
 
@@ -396,6 +436,7 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
+    axis.w = abs(axis.w); // negative: a twin cap (hit_tapered)
     rvec3 y = p - base.xyz;
     real z = rdot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);

@@ -178,15 +178,27 @@
  * 0.30000001192092896 in float). Set in the float scene only;
  * shaders/pigments.glsl trusts a flat face to lie exactly on a cell face
  * only without it. */
-#define TP2_SHAPE_MASK 0xffff
-#define TP2_SHAPE_INEXACT 0x10000
+#define TP2_SHAPE_MASK 0xf
+#define TP2_SHAPE_INEXACT 0x10
 /* And this one: some face of the flat object lies so near another
  * object's face, without being on the same plane, that float may find
  * both at one distance where double does not (host/twins.h). Set in the
  * float scene of --precision auto only; shaders/shapes.glsl's
  * coincident_faces takes equal distances for coincident faces only
  * without it. */
-#define TP2_SHAPE_NEAR_TWIN 0x20000
+#define TP2_SHAPE_NEAR_TWIN 0x20
+/* A cylinder's or cone's base cap (and top cap) lies in another object's
+ * face: the cap is met by plane_t's arithmetic on that face's plane, kept
+ * in extra row ids.w (and ids.w + 1), so that both give one distance
+ * (host/ties.h). The cap's record says so by a negative length. */
+#define TP2_SHAPE_TWIN_BASE 0x40
+#define TP2_SHAPE_TWIN_TOP 0x80
+/* Above the flags: the object's place in the scene file (SPEC 4, Ties:
+ * of two objects hit at one distance, the one listed first is the hit),
+ * up to TP2_ORDER_MAX (later ones share it, and the layout decides
+ * between them). A mesh's triangles share their mesh's. */
+#define TP2_SHAPE_ORDER_SHIFT 8
+#define TP2_ORDER_MAX 0xffffff
 
 /* Most faces of one polyhedron: its face count travels as a float, exact
  * to 2^24, and every ray that meets it loops over all of them. */
