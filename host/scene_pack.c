@@ -256,10 +256,11 @@ static void apply_ties(const struct layout *lay, size_t slot, struct shape_recor
             memcpy(rec->row[0], t->plane, sizeof t->plane);
         } else if (t->role == TIE_FACE) {
             memcpy(extra[t->part], t->plane, sizeof t->plane);
-        } else if (t->role == TIE_CAP) {
-            ids[0] |= t->part == 1 ? TP2_SHAPE_TWIN_BASE : TP2_SHAPE_TWIN_TOP;
+        } else {
+            ids[0] |= t->part == 2 ? TP2_SHAPE_TWIN_TOP : TP2_SHAPE_TWIN_BASE;
             ids[3] = (int32_t)t->row;
-            rec->row[1][3] = -fabs(rec->row[1][3]); /* the record's flag */
+            if (t->role == TIE_CAP)
+                rec->row[1][3] = -fabs(rec->row[1][3]); /* the record's flag */
             if (all_rows && e == lay->tie_first[slot])
                 memset(all_rows[t->row], 0, 2 * sizeof all_rows[0]); /* a cap not twinned */
             if (all_rows)
@@ -317,7 +318,7 @@ static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t
     size_t object = lay->slots[slot].object;
     int kind = shape_kinds[s->objects[object].kind].gpu_kind;
     if (kind != TP2_SHAPE_PLANE && kind != TP2_SHAPE_POLYHEDRON && kind != TP2_SHAPE_BOX &&
-        kind != TP2_SHAPE_CYLINDER && kind != TP2_SHAPE_CONE)
+        kind != TP2_SHAPE_CYLINDER && kind != TP2_SHAPE_CONE && kind != TP2_SHAPE_TRIANGLE)
         return 0;
     struct shape_record rec;
     size_t extra_at = 0;
@@ -328,7 +329,12 @@ static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t
     struct tie_surface t[6];
     size_t count = 0;
     const double *r0 = rec.row[0], *r1 = rec.row[1];
-    if (kind == TP2_SHAPE_PLANE) {
+    if (kind == TP2_SHAPE_TRIANGLE) {
+        double planes[1][4];
+        shape_kinds[s->objects[object].kind].faces(&rec, NULL, planes);
+        t[count++] = (struct tie_surface){{planes[0][0], planes[0][1], planes[0][2],
+                                           planes[0][3]}, 0, 1, 0, TIE_TRIANGLE};
+    } else if (kind == TP2_SHAPE_PLANE) {
         t[count++] = (struct tie_surface){{r0[0], r0[1], r0[2], r0[3]}, 0, 0, 0, TIE_PLANE};
     } else if (kind == TP2_SHAPE_BOX) {
         double planes[6][4];
@@ -381,8 +387,10 @@ static int find_ties(const struct scene *s, struct layout *lay)
 {
     int kinds = lay->bounded_kinds | lay->unbounded_kinds;
     int changeable = 1 << TP2_SHAPE_PLANE | 1 << TP2_SHAPE_POLYHEDRON |
-                     1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE;
-    if (!(kinds & changeable) || lay->nprims > UINT32_MAX)
+                     1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE | 1 << TP2_SHAPE_TRIANGLE;
+    if (!(kinds & changeable) || s->nobjects < 2)
+        return 0;
+    if (lay->nprims > UINT32_MAX)
         return 0;
     double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
     struct tie_surface *list = NULL;
@@ -400,7 +408,7 @@ static int find_ties(const struct scene *s, struct layout *lay)
     size_t m = 0;
     for (size_t i = 0; rc == 0 && i < n; i++)
         if (twin[i] && list[i].role != TIE_FIXED &&
-            (list[i].role == TIE_CAP || memcmp(canonical[i], list[i].plane, sizeof canonical[i])))
+            (list[i].role >= TIE_CAP || memcmp(canonical[i], list[i].plane, sizeof canonical[i])))
             m++;
     if (rc == 0 && m > 0) {
         lay->ties = malloc(m * sizeof *lay->ties);
@@ -412,7 +420,7 @@ static int find_ties(const struct scene *s, struct layout *lay)
         size_t e = 0;
         for (size_t i = 0; i < n; i++)
             if (twin[i] && list[i].role != TIE_FIXED &&
-                (list[i].role == TIE_CAP ||
+                (list[i].role >= TIE_CAP ||
                  memcmp(canonical[i], list[i].plane, sizeof canonical[i]))) {
                 lay->ties[e] = (struct tie_entry){list[i].slot, list[i].part, list[i].role, 0,
                                                   {0}};
@@ -423,7 +431,7 @@ static int find_ties(const struct scene *s, struct layout *lay)
         uint32_t last = UINT32_MAX;
         for (e = 0; e < m; e++) {
             struct tie_entry *t = &lay->ties[e];
-            if (t->role == TIE_CAP) {
+            if (t->role >= TIE_CAP) {
                 if (t->slot != last)
                     lay->nextra += 2; /* base, top */
                 last = t->slot;

@@ -91,7 +91,7 @@ int ties_group(struct tie_surface *s, size_t n, double scale, double (*canonical
         if (owner[r] != SIZE_MAX)
             continue; /* one object's faces only */
         const double *c = s[best[r]].plane;
-        bool flip = s[i].role != TIE_CAP &&
+        bool flip = s[i].role < TIE_CAP &&
                     s[i].plane[0] * c[0] + s[i].plane[1] * c[1] + s[i].plane[2] * c[2] < 0;
         for (int a = 0; a < 4; a++)
             canonical[i][a] = flip ? -c[a] : c[a];

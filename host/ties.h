@@ -37,6 +37,8 @@ enum tie_role {
     TIE_PLANE,  /* a plane object's row: replaced by the canonical plane */
     TIE_FACE,   /* a polyhedron's face row: replaced the same way */
     TIE_CAP,    /* a cylinder's or cone's cap: met through a twin row */
+    TIE_TRIANGLE, /* a triangle: its inside by its corners, its distance
+                     through a twin row */
 };
 
 struct tie_surface {
@@ -50,7 +52,7 @@ struct tie_surface {
 /* Groups the n surfaces (reordering them) and sets, for each that shares
  * a group with another object's surface, twin[i] = true and canonical[i]
  * to the group's plane turned to face the way surface i's normal does
- * (caps keep it as the group has it: their distance does not depend on the
+ * (caps and triangles keep it as the group has it: their distance does not depend on the
  * side). scale: the largest coordinate magnitude of the scene. Faces of
  * one group beyond a window of 256 after one another along d are not
  * compared (more than that many faces in one plane: a few may stay

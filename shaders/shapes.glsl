@@ -721,6 +721,14 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge
     if (det == 0.0 || edge_on(i, d))
         return NO_HIT;
     real t = tw / det;
+    // In another object's face (host/ties.h): that face's distance, so
+    // that the two tie exactly; asked only of a ray inside the corners.
+    ivec4 ids = object_ids(i);
+    if ((ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
+        rvec4 twin = extra_row(ids.w);
+        real denom = rdot(twin.xyz, d);
+        t = denom != 0.0 ? plane_cross(twin, o, denom) : t;
+    }
     return t > 0.0 ? t : NO_HIT;
 }
 
