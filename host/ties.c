@@ -94,7 +94,7 @@ int ties_group(struct tie_surface *s, size_t n, double scale, double (*canonical
         bool flip = s[i].role < TIE_CAP &&
                     s[i].plane[0] * c[0] + s[i].plane[1] * c[1] + s[i].plane[2] * c[2] < 0;
         for (int a = 0; a < 4; a++)
-            canonical[i][a] = flip ? -c[a] : c[a];
+            canonical[i][a] = (flip ? -c[a] : c[a]) + 0.0; /* -0 is 0: the row stays as it was */
         twin[i] = true;
     }
     free(k), free(up), free(best), free(owner);
