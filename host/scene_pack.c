@@ -382,7 +382,9 @@ static int by_slot(const void *x, const void *y)
 
 /* Finds the coincident surfaces (ties.h) and what each becomes
  * (lay->ties); a cap's twin rows are added to the extra buffer's end.
- * Nothing to do without a plane, a polyhedron, a cylinder or a cone. */
+ * Nothing to do without a plane, a polyhedron, a cylinder, a cone or a
+ * triangle. A triangle is compared only with the other kinds' surfaces:
+ * two meshes lying in one plane keep their own distances. */
 static int find_ties(const struct scene *s, struct layout *lay)
 {
     int kinds = lay->bounded_kinds | lay->unbounded_kinds;
@@ -396,8 +398,20 @@ static int find_ties(const struct scene *s, struct layout *lay)
     struct tie_surface *list = NULL;
     size_t n = 0, cap = 0;
     int rc = rows ? 0 : -1;
+    /* The other kinds' surfaces first, then the triangles that lie in one */
     for (size_t slot = 0; rc == 0 && slot < lay->nprims; slot++)
-        rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
+        if (shape_kinds[s->objects[lay->slots[slot].object].kind].gpu_kind != TP2_SHAPE_TRIANGLE)
+            rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
+    size_t others = n;
+    if (rc == 0 && others > 0 && (kinds & 1 << TP2_SHAPE_TRIANGLE))
+        ties_sort(list, others);
+    for (size_t slot = 0; rc == 0 && others > 0 && slot < lay->nprims; slot++)
+        if (shape_kinds[s->objects[lay->slots[slot].object].kind].gpu_kind == TP2_SHAPE_TRIANGLE) {
+            size_t before = n;
+            rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
+            if (rc == 0 && !ties_near(list, others, list[before].plane, lay->scale))
+                n = before;
+        }
     free(rows);
     double (*canonical)[4] = malloc((n ? n : 1) * sizeof *canonical);
     bool *twin = malloc((n ? n : 1) * sizeof *twin);

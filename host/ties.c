@@ -100,3 +100,45 @@ int ties_group(struct tie_surface *s, size_t n, double scale, double (*canonical
     free(k), free(up), free(best), free(owner);
     return 0;
 }
+
+/* By oriented d, for ties_near's binary search. */
+static int by_oriented_d(const void *x, const void *y)
+{
+    double a[4], b[4];
+    oriented(((const struct tie_surface *)x)->plane, a);
+    oriented(((const struct tie_surface *)y)->plane, b);
+    return a[3] < b[3] ? -1 : a[3] > b[3] ? 1 : 0;
+}
+
+void ties_sort(struct tie_surface *s, size_t n)
+{
+    qsort(s, n, sizeof *s, by_oriented_d);
+}
+
+bool ties_near(const struct tie_surface *sorted, size_t n, const double plane[4],
+               double scale)
+{
+    double p[4];
+    oriented(plane, p);
+    double tol_d = TIE_TOLERANCE * fmax(scale > 0 ? scale : 1, fabs(p[3]));
+    size_t lo = 0, hi = n; /* the first with d >= p[3] - tol_d */
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        double q[4];
+        oriented(sorted[mid].plane, q);
+        if (q[3] < p[3] - tol_d)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (size_t j = lo; j < n && j < lo + WINDOW; j++) {
+        double q[4];
+        oriented(sorted[j].plane, q);
+        if (q[3] > p[3] + tol_d)
+            break;
+        if (fabs(q[0] - p[0]) <= TIE_TOLERANCE && fabs(q[1] - p[1]) <= TIE_TOLERANCE &&
+            fabs(q[2] - p[2]) <= TIE_TOLERANCE)
+            return true;
+    }
+    return false;
+}
