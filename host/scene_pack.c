@@ -76,6 +76,7 @@ struct layout {
      * tie_first[slot + 1]) are slot's; NULL where there are none. */
     struct tie_entry *ties;
     size_t *tie_first;
+    bool twins_compiled; /* TP2_SPEC_TWINS */
 };
 
 /* The parser has rejected eye == center and up parallel to the view. */
@@ -261,10 +262,8 @@ static void apply_ties(const struct layout *lay, size_t slot, struct shape_recor
             ids[3] = (int32_t)t->row;
             if (t->role == TIE_CAP)
                 rec->row[1][3] = -fabs(rec->row[1][3]); /* the record's flag */
-            if (all_rows && e == lay->tie_first[slot])
-                memset(all_rows[t->row], 0, 2 * sizeof all_rows[0]); /* a cap not twinned */
             if (all_rows)
-                memcpy(all_rows[t->row + (t->part == 2)], t->plane, sizeof t->plane);
+                memcpy(all_rows[t->row], t->plane, sizeof t->plane);
         }
     }
 }
@@ -309,23 +308,24 @@ static void compare_packed(const struct scene *s, const struct layout *lay, size
     }
 }
 
-/* Slot's surfaces that may coincide with another object's (ties.h),
- * appended to *list; -1 when out of memory. */
-static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t slot,
-                         double (*rows)[4], struct tie_surface **list, size_t *n,
-                         size_t *cap)
+/* The surfaces of primitive k of `object` (GPU slot `slot`) that may
+ * coincide with another object's (ties.h), packed and moved to `origin`
+ * (unless NULL), appended to *list; -1 when out of memory. */
+static int prim_surfaces(const struct scene *s, size_t object, size_t k, size_t slot,
+                         const double *origin, double (*rows)[4], struct tie_surface **list,
+                         size_t *n, size_t *cap)
 {
-    size_t object = lay->slots[slot].object;
-    int kind = shape_kinds[s->objects[object].kind].gpu_kind;
+    const struct scene_object *o = &s->objects[object];
+    const struct shape_kind *kd = &shape_kinds[o->kind];
+    int kind = kd->gpu_kind;
     if (kind != TP2_SHAPE_PLANE && kind != TP2_SHAPE_POLYHEDRON && kind != TP2_SHAPE_BOX &&
         kind != TP2_SHAPE_CYLINDER && kind != TP2_SHAPE_CONE && kind != TP2_SHAPE_TRIANGLE)
         return 0;
     struct shape_record rec;
-    size_t extra_at = 0;
-    int32_t ids[4];
-    object_record(s, lay, slot, &rec, rows, &extra_at, ids);
-    if (lay->moved)
-        move_record(s, lay, slot, &rec, rows);
+    memset(&rec, 0, sizeof rec);
+    kd->pack(scene_object_reals(s, o), o->count, k, &rec, rows);
+    if (origin)
+        kd->move(&rec, rows, origin);
     struct tie_surface t[6];
     size_t count = 0;
     const double *r0 = rec.row[0], *r1 = rec.row[1];
@@ -373,6 +373,62 @@ static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t
     return 0;
 }
 
+static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t slot,
+                         double (*rows)[4], struct tie_surface **list, size_t *n,
+                         size_t *cap)
+{
+    const struct prim_ref *ref = &lay->slots[slot];
+    return prim_surfaces(s, ref->object, ref->k, slot, lay->moved ? lay->origin : NULL, rows,
+                         list, n, cap);
+}
+
+/* Whether some cap or triangle may lie in another object's surface, found
+ * in the scene's own coordinates before the layout, with room for the
+ * move to its origin (*found): the shaders' code for twin caps and
+ * triangles is compiled only then (TP2_SPEC_TWINS), which costs a
+ * cylinder's test a third more on lavapipe. -1 when out of memory. */
+static int early_twins(const struct scene *s, bool *found)
+{
+    *found = false;
+    double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
+    struct tie_surface *list = NULL;
+    size_t n = 0, cap = 0;
+    int rc = rows ? 0 : -1;
+    bool curved = false;
+    for (size_t i = 0; rc == 0 && i < s->nobjects; i++) {
+        int kind = shape_kinds[s->objects[i].kind].gpu_kind;
+        curved |= kind == TP2_SHAPE_CYLINDER || kind == TP2_SHAPE_CONE ||
+                  kind == TP2_SHAPE_TRIANGLE;
+        if (kind != TP2_SHAPE_TRIANGLE)
+            rc = prim_surfaces(s, i, 0, 0, NULL, rows, &list, &n, &cap);
+    }
+    double scale = vec3_max_abs(s->eye);
+    for (size_t i = 0; i < n; i++)
+        scale = fmax(scale, fabs(list[i].plane[3]));
+    scale *= 16; /* the move changes d by its rounding */
+    if (rc == 0 && curved && n > 0) {
+        ties_sort(list, n);
+        for (size_t i = 0; i < n && !*found; i++)
+            *found = list[i].role == TIE_CAP &&
+                     ties_near(list, n, list[i].plane, scale, list[i].object);
+        for (size_t i = 0; rc == 0 && i < s->nobjects && !*found; i++) {
+            const struct scene_object *o = &s->objects[i];
+            if (shape_kinds[o->kind].gpu_kind != TP2_SHAPE_TRIANGLE)
+                continue;
+            size_t prims = shape_kinds[o->kind].primitives(scene_object_reals(s, o), o->count);
+            for (size_t k = 0; rc == 0 && k < prims && !*found; k++) {
+                size_t before = n;
+                rc = prim_surfaces(s, i, k, 0, NULL, rows, &list, &n, &cap);
+                *found = rc == 0 && ties_near(list, before, list[before].plane, scale, i);
+                n = before;
+            }
+        }
+    }
+    free(rows);
+    free(list);
+    return rc;
+}
+
 static int by_slot(const void *x, const void *y)
 {
     const struct tie_entry *a = x, *b = y;
@@ -409,7 +465,8 @@ static int find_ties(const struct scene *s, struct layout *lay)
         if (shape_kinds[s->objects[lay->slots[slot].object].kind].gpu_kind == TP2_SHAPE_TRIANGLE) {
             size_t before = n;
             rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
-            if (rc == 0 && !ties_near(list, others, list[before].plane, lay->scale))
+            if (rc == 0 &&
+                !ties_near(list, others, list[before].plane, lay->scale, SIZE_MAX))
                 n = before;
         }
     free(rows);
@@ -419,6 +476,8 @@ static int find_ties(const struct scene *s, struct layout *lay)
         rc = -1;
     if (rc == 0)
         rc = ties_group(list, n, lay->scale, canonical, twin);
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        twin[i] &= lay->twins_compiled || list[i].role < TIE_CAP;
     size_t m = 0;
     for (size_t i = 0; rc == 0 && i < n; i++)
         if (twin[i] && list[i].role != TIE_FIXED &&
@@ -442,16 +501,19 @@ static int find_ties(const struct scene *s, struct layout *lay)
                 e++;
             }
         qsort(lay->ties, m, sizeof *lay->ties, by_slot);
-        uint32_t last = UINT32_MAX;
+        /* One twin row per cap or triangle: a cylinder standing on one
+         * face and touching another with its top keeps its base's (the
+         * shader reads one row: a cylinder's test costs less). */
+        size_t kept = 0;
         for (e = 0; e < m; e++) {
-            struct tie_entry *t = &lay->ties[e];
-            if (t->role >= TIE_CAP) {
-                if (t->slot != last)
-                    lay->nextra += 2; /* base, top */
-                last = t->slot;
-                t->row = lay->nextra - 2;
-            }
-            lay->tie_first[t->slot + 1]++;
+            struct tie_entry t = lay->ties[e];
+            if (t.role >= TIE_CAP && kept > 0 && lay->ties[kept - 1].slot == t.slot &&
+                lay->ties[kept - 1].role >= TIE_CAP)
+                continue;
+            if (t.role >= TIE_CAP)
+                t.row = lay->nextra++;
+            lay->ties[kept++] = t;
+            lay->tie_first[t.slot + 1]++;
         }
         for (size_t slot = 0; slot < lay->nprims; slot++)
             lay->tie_first[slot + 1] += lay->tie_first[slot];
@@ -805,6 +867,9 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
+    if (rc == 0)
+        rc = early_twins(s, &lay.twins_compiled);
+    out->features.twins = lay.twins_compiled;
     out->bounded = lay.nbounded;
     out->unbounded = lay.nprims - lay.nbounded;
     if (rc == 0 && opt->features_known)

@@ -116,7 +116,7 @@ void ties_sort(struct tie_surface *s, size_t n)
 }
 
 bool ties_near(const struct tie_surface *sorted, size_t n, const double plane[4],
-               double scale)
+               double scale, size_t other_than)
 {
     double p[4];
     oriented(plane, p);
@@ -136,8 +136,8 @@ bool ties_near(const struct tie_surface *sorted, size_t n, const double plane[4]
         oriented(sorted[j].plane, q);
         if (q[3] > p[3] + tol_d)
             break;
-        if (fabs(q[0] - p[0]) <= TIE_TOLERANCE && fabs(q[1] - p[1]) <= TIE_TOLERANCE &&
-            fabs(q[2] - p[2]) <= TIE_TOLERANCE)
+        if (sorted[j].object != other_than && fabs(q[0] - p[0]) <= TIE_TOLERANCE &&
+            fabs(q[1] - p[1]) <= TIE_TOLERANCE && fabs(q[2] - p[2]) <= TIE_TOLERANCE)
             return true;
     }
     return false;

@@ -63,9 +63,10 @@ int ties_group(struct tie_surface *s, size_t n, double scale, double (*canonical
 /* Whether a plane lies within the tolerance of one of n surfaces (sorted
  * by ties_sort first): a mesh's triangles are put in the search only
  * where they lie in another object's face, so that a million triangles
- * cost a lookup each, not a place in the sort. */
+ * cost a lookup each, not a place in the sort. Surfaces of object
+ * other_than are passed over. */
 void ties_sort(struct tie_surface *s, size_t n);
 bool ties_near(const struct tie_surface *sorted, size_t n, const double plane[4],
-               double scale);
+               double scale, size_t other_than);
 
 #endif

@@ -353,42 +353,24 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // slab between the caps. Its radius at height z along the axis is
 // r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
-// A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP; its
-// record's length is then negative) is met by plane_cross on that face's
-// plane, from the ray as it came (o_ray), so that the two tie exactly:
-// s is clipped by the caps after the side.
-void clip_twin_caps(int i, inout Span s, rvec3 o_ray, rvec3 d, real oa, real da, real h,
-                    real t0)
-{
-    if (da == 0.0) {
-        if (oa < 0.0 || oa > h)
-            s.t_in = NO_HIT;
-        return;
-    }
-    ivec4 ids = object_ids(i);
-    rvec4 lo_plane = extra_row(ids.w), hi_plane = extra_row(ids.w + 1);
-    real lo_denom = rdot(lo_plane.xyz, d), hi_denom = rdot(hi_plane.xyz, d);
-    real t_lo = (ids.x & TP2_SHAPE_TWIN_BASE) != 0 && lo_denom != 0.0
-                    ? plane_cross(lo_plane, o_ray, lo_denom)
-                    : (0.0 - oa) / da + t0;
-    real t_hi = (ids.x & TP2_SHAPE_TWIN_TOP) != 0 && hi_denom != 0.0
-                    ? plane_cross(hi_plane, o_ray, hi_denom)
-                    : (h - oa) / da + t0;
-    if (da > 0.0)
-        clip(s, t_lo, t_hi, 1, 2, float(da));
-    else
-        clip(s, t_hi, t_lo, 2, 1, float(-da));
-}
-
+// A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP;
+// the record's length is then negative) is met as that face is, by
+// plane_cross on its plane (host/ties.h), so that the two tie exactly:
+// such an object's ray is not recentered (t0 = 0), and the cap's distance
+// is the plane's quotient. Elsewhere the caps' quotients are clip_slab's.
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    bool twin = axis.w < 0.0; // a cap in another object's face
+    bool twin = TWINS && axis.w < 0.0;
     real h = abs(axis.w);
     real k = (r1 - base.w) / h;
     rvec3 o_ray = o;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
+    if (twin) {
+        o = o_ray;
+        t0 = 0.0;
+    }
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
     real da = rdot(d, axis.xyz);
@@ -397,8 +379,27 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
     Span s = WHOLE_LINE;
-    if (!twin)
-        clip_slab(s, oa, da, 0.0, h, 1, 2);
+    // clip_slab(s, oa, da, 0.0, h, 1, 2), each cap's quotient its own
+    rvec2 num = rvec2(0.0 - oa, h - oa), den = rvec2(da);
+    if (twin) { // one cap at most (host/scene_pack.c, find_ties)
+        ivec4 ids = object_ids(i);
+        bool top = (ids.x & TP2_SHAPE_TWIN_TOP) != 0;
+        rvec4 plane = extra_row(ids.w);
+        real plane_den = rdot(plane.xyz, d);
+        real plane_num = -(rdot(plane.xyz, o) + plane.w);
+        bool usable = plane_den != 0.0;
+        bvec2 use = bvec2(!top && usable, top && usable);
+        num = mix(num, rvec2(plane_num), use);
+        den = mix(den, rvec2(plane_den), use);
+    }
+    if (da == 0.0) {
+        if (oa < 0.0 || oa > h)
+            s.t_in = NO_HIT; // parallel and outside: empty
+    } else if (da > 0.0) {
+        clip(s, num.x / den.x, num.y / den.y, 1, 2, float(da));
+    } else {
+        clip(s, num.y / den.y, num.x / den.x, 2, 1, float(-da));
+    }
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
@@ -420,8 +421,6 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
-    if (twin)
-        clip_twin_caps(i, s, o_ray, d, oa, da, h, t0);
     return convex_hit(s, on, inward, part);
 }
 
@@ -723,8 +722,8 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge
     real t = tw / det;
     // In another object's face (host/ties.h): that face's distance, so
     // that the two tie exactly; asked only of a ray inside the corners.
-    ivec4 ids = object_ids(i);
-    if ((ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
+    ivec4 ids = TWINS ? object_ids(i) : ivec4(0);
+    if (TWINS && (ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
         rvec4 twin = extra_row(ids.w);
         real denom = rdot(twin.xyz, d);
         t = denom != 0.0 ? plane_cross(twin, o, denom) : t;

@@ -82,7 +82,8 @@
 #define TP2_SPEC_PIXEL_LIST 15 /* bool: trace the listed pixels, not the whole band */
 #define TP2_SPEC_OCCLUDER_HINT 16 /* bool: an arealight sample's shadow ray tests the last one's occluder first */
 #define TP2_SPEC_SLABS 17    /* int: slabs a dispatch's rows of workgroups are cut into (render_bands.c) */
-#define TP2_SPEC_COUNT 18
+#define TP2_SPEC_TWINS 18    /* bool: some cap or triangle is met through a twin row (host/ties.h) */
+#define TP2_SPEC_COUNT 19
 
 /* A pixel's signature word (shaders/signature.glsl, host/retrace.c): a
  * hash of the float pass's decisions, three bits and the camera rays'
