@@ -355,9 +355,9 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
 // A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP;
 // the record's length is then negative) is met as that face is, by
-// plane_cross on its plane (host/ties.h), so that the two tie exactly:
-// such an object's ray is not recentered (t0 = 0), and the cap's distance
-// is the plane's quotient. Elsewhere the caps' quotients are clip_slab's.
+// plane_cross on its plane from the ray as it came (host/ties.h), so that
+// the two tie exactly: the span is found as for any cap, and where it
+// enters or leaves by that cap, the distance is the plane's.
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
@@ -365,12 +365,16 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     bool twin = TWINS && axis.w < 0.0;
     real h = abs(axis.w);
     real k = (r1 - base.w) / h;
-    rvec3 o_ray = o;
-    real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
-    if (twin) {
-        o = o_ray;
-        t0 = 0.0;
+    real cap_t = NO_HIT;
+    int cap_part = -1; // the twin cap, if its plane is not parallel to the ray
+    if (twin) { // one cap at most (host/scene_pack.c, find_ties)
+        ivec4 ids = object_ids(i);
+        rvec4 plane = extra_row(ids.w);
+        real denom = rdot(plane.xyz, d);
+        cap_t = denom != 0.0 ? plane_cross(plane, o, denom) : NO_HIT;
+        cap_part = denom == 0.0 ? -1 : (ids.x & TP2_SHAPE_TWIN_TOP) != 0 ? 2 : 1;
     }
+    real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
     real da = rdot(d, axis.xyz);
@@ -379,26 +383,18 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
     Span s = WHOLE_LINE;
-    // clip_slab(s, oa, da, 0.0, h, 1, 2), each cap's quotient its own
-    rvec2 num = rvec2(0.0 - oa, h - oa), den = rvec2(da);
-    if (twin) { // one cap at most (host/scene_pack.c, find_ties)
-        ivec4 ids = object_ids(i);
-        bool top = (ids.x & TP2_SHAPE_TWIN_TOP) != 0;
-        rvec4 plane = extra_row(ids.w);
-        real plane_den = rdot(plane.xyz, d);
-        real plane_num = -(rdot(plane.xyz, o) + plane.w);
-        bool usable = plane_den != 0.0;
-        bvec2 use = bvec2(!top && usable, top && usable);
-        num = mix(num, rvec2(plane_num), use);
-        den = mix(den, rvec2(plane_den), use);
-    }
-    if (da == 0.0) {
+    if (!twin) {
+        clip_slab(s, oa, da, 0.0, h, 1, 2);
+    } else if (da == 0.0) {
         if (oa < 0.0 || oa > h)
             s.t_in = NO_HIT; // parallel and outside: empty
-    } else if (da > 0.0) {
-        clip(s, num.x / den.x, num.y / den.y, 1, 2, float(da));
     } else {
-        clip(s, num.y / den.y, num.x / den.x, 2, 1, float(-da));
+        real t_lo = cap_part == 1 ? cap_t - t0 : (0.0 - oa) / da;
+        real t_hi = cap_part == 2 ? cap_t - t0 : (h - oa) / da;
+        if (da > 0.0)
+            clip(s, t_lo, t_hi, 1, 2, float(da));
+        else
+            clip(s, t_hi, t_lo, 2, 1, float(-da));
     }
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
@@ -421,6 +417,10 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
+    if (twin) {
+        s.t_in = s.part_in == cap_part && s.t_in > -NO_HIT ? cap_t : s.t_in;
+        s.t_out = s.part_out == cap_part && s.t_out < NO_HIT ? cap_t : s.t_out;
+    }
     return convex_hit(s, on, inward, part);
 }
 
