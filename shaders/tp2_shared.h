@@ -188,10 +188,11 @@
  * coincident_faces takes equal distances for coincident faces only
  * without it. */
 #define TP2_SHAPE_NEAR_TWIN 0x20
-/* A cylinder's or cone's base cap (and top cap) lies in another object's
- * face: the cap is met by plane_t's arithmetic on that face's plane, kept
- * in extra row ids.w (and ids.w + 1), so that both give one distance
- * (host/ties.h). The cap's record says so by a negative length. */
+/* A cylinder's or cone's base cap (or its top cap: one of them) lies in
+ * another object's face, or a triangle does (BASE): it is met by plane_t's
+ * arithmetic on that face's plane, kept in extra row ids.w, so that both
+ * give one distance (host/ties.h). A cap's record says so by a negative
+ * length; the code is compiled only under TP2_SPEC_TWINS. */
 #define TP2_SHAPE_TWIN_BASE 0x40
 #define TP2_SHAPE_TWIN_TOP 0x80
 /* Above the flags: the object's place in the scene file (SPEC 4, Ties:
