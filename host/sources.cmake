@@ -33,6 +33,7 @@ set(TP2_SCENE_SOURCES
 set(TP2_PACK_SOURCES
   ${TP2_HOST}/pack/bvh.c
   ${TP2_HOST}/pack/scene_pack.c
+  ${TP2_HOST}/pack/ties.c
   ${TP2_HOST}/pack/twins.c)
 set(TP2_GPU_SOURCES
   ${TP2_HOST}/gpu/pipeline_cache.c

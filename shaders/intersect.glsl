@@ -102,10 +102,20 @@ rvec3 safe_inverse(rvec3 d)
     return real(1.0) / mix(d, rvec3(tiny), lessThan(abs(d), rvec3(tiny)));
 }
 
+// Whether object a is listed before object b in the scene file (SPEC 4,
+// Ties), the layout deciding within one object (a mesh's triangles) and
+// beyond TP2_ORDER_MAX. Asked only of an exact tie.
+bool listed_before(int a, int b)
+{
+    uint ka = uint(object_ids(a).x) >> TP2_SHAPE_ORDER_SHIFT;
+    uint kb = uint(object_ids(b).x) >> TP2_SHAPE_ORDER_SHIFT;
+    return ka < kb || (ka == kb && a < b);
+}
+
 // Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
-// an any-hit ray has found one. An exact tie goes to the first object in
-// the layout, as in a plain loop, whatever order the BVH tests them in
-// (it differs where mixed's float pass grows boxes).
+// an any-hit ray has found one. An exact tie goes to the object listed
+// first in the scene file, whatever order the BVH or a plain loop tests
+// them in (it differs where mixed's float pass grows boxes).
 bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
                  vec2 doubt)
 {
@@ -116,7 +126,7 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
     bool grazed = SIGNATURES && edge < NO_EDGE;
     if (grazed && edge <= float(h.t) + most_reach())
         h.edge = min(h.edge, edge);
-    bool nearer = (t < h.t || (t == h.t && i < h.object)) && !(any_hit && grazed);
+    bool nearer = (t < h.t || (t == h.t && h.object >= 0 && listed_before(i, h.object))) && !(any_hit && grazed);
     if (nearer) {
         h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
     } else if (SIGNATURES && t < h.next) {

@@ -118,6 +118,7 @@ layout(constant_id = TP2_SPEC_SIGNATURES) const bool SIGNATURES = false;
 layout(constant_id = TP2_SPEC_PIXEL_LIST) const bool PIXEL_LIST = false;
 layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
+layout(constant_id = TP2_SPEC_TWINS) const bool TWINS = true;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
 // TP2_SHAPE_*: kinds.h): code for kinds it does not use is compiled out.

@@ -230,13 +230,21 @@ void surface_sphere(int i, inout rvec3 p, out rvec3 n, out real scale, out vec2 
 
 // ---- plane: a = unit normal, distance ----------------------------------
 
+// Where the ray's line meets n.x + dist = 0, denom = n.d != 0: the one
+// formula every surface of a coincident group is met by (host/ties.h), so
+// that all give one distance, bit for bit.
+real plane_cross(rvec4 plane, rvec3 o, real denom)
+{
+    return -(rdot(plane.xyz, o) + plane.w) / denom;
+}
+
 // t > 0 where the ray meets n.x + dist = 0.
 real plane_t(rvec4 plane, rvec3 o, rvec3 d)
 {
     real denom = rdot(plane.xyz, d);
     if (denom == 0.0)
         return NO_HIT;
-    real t = -(rdot(plane.xyz, o) + plane.w) / denom;
+    real t = plane_cross(plane, o, denom);
     return t > 0.0 ? t : NO_HIT;
 }
 
@@ -345,12 +353,27 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // slab between the caps. Its radius at height z along the axis is
 // r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
+// A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP;
+// the record's length is then negative) is met as that face is, by
+// plane_cross on its plane from the ray as it came (host/ties.h), so that
+// the two tie exactly: the span is found as for any cap, and where it
+// enters or leaves by that cap, the distance is the plane's.
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    real h = axis.w;
+    bool twin = TWINS && axis.w < 0.0;
+    real h = abs(axis.w);
     real k = (r1 - base.w) / h;
+    real cap_t = NO_HIT;
+    int cap_part = -1; // the twin cap, if its plane is not parallel to the ray
+    if (twin) { // one cap at most (host/scene_pack.c, find_ties)
+        ivec4 ids = object_ids(i);
+        rvec4 plane = extra_row(ids.w);
+        real denom = rdot(plane.xyz, d);
+        cap_t = denom != 0.0 ? plane_cross(plane, o, denom) : NO_HIT;
+        cap_part = denom == 0.0 ? -1 : (ids.x & TP2_SHAPE_TWIN_TOP) != 0 ? 2 : 1;
+    }
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
@@ -360,7 +383,19 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
     Span s = WHOLE_LINE;
-    clip_slab(s, oa, da, 0.0, h, 1, 2);
+    if (!twin) {
+        clip_slab(s, oa, da, 0.0, h, 1, 2);
+    } else if (da == 0.0) {
+        if (oa < 0.0 || oa > h)
+            s.t_in = NO_HIT; // parallel and outside: empty
+    } else {
+        real t_lo = cap_part == 1 ? cap_t - t0 : (0.0 - oa) / da;
+        real t_hi = cap_part == 2 ? cap_t - t0 : (h - oa) / da;
+        if (da > 0.0)
+            clip(s, t_lo, t_hi, 1, 2, float(da));
+        else
+            clip(s, t_hi, t_lo, 2, 1, float(-da));
+    }
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
@@ -382,6 +417,10 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
+    if (twin) {
+        s.t_in = s.part_in == cap_part && s.t_in > -NO_HIT ? cap_t : s.t_in;
+        s.t_out = s.part_out == cap_part && s.t_out < NO_HIT ? cap_t : s.t_out;
+    }
     return convex_hit(s, on, inward, part);
 }
 
@@ -396,6 +435,7 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
+    axis.w = abs(axis.w); // negative: a twin cap (hit_tapered)
     rvec3 y = p - base.xyz;
     real z = rdot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);
@@ -680,6 +720,14 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge
     if (det == 0.0 || edge_on(i, d))
         return NO_HIT;
     real t = tw / det;
+    // In another object's face (host/ties.h): that face's distance, so
+    // that the two tie exactly; asked only of a ray inside the corners.
+    ivec4 ids = TWINS ? object_ids(i) : ivec4(0);
+    if (TWINS && (ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
+        rvec4 twin = extra_row(ids.w);
+        real denom = rdot(twin.xyz, d);
+        t = denom != 0.0 ? plane_cross(twin, o, denom) : t;
+    }
     return t > 0.0 ? t : NO_HIT;
 }
 

@@ -82,7 +82,8 @@
 #define TP2_SPEC_PIXEL_LIST 15 /* bool: trace the listed pixels, not the whole band */
 #define TP2_SPEC_OCCLUDER_HINT 16 /* bool: an arealight sample's shadow ray tests the last one's occluder first */
 #define TP2_SPEC_SLABS 17    /* int: slabs a dispatch's rows of workgroups are cut into (render_bands.c) */
-#define TP2_SPEC_COUNT 18
+#define TP2_SPEC_TWINS 18    /* bool: some cap or triangle is met through a twin row (host/ties.h) */
+#define TP2_SPEC_COUNT 19
 
 /* A pixel's signature word (shaders/signature.glsl, host/render/retrace.c): a
  * hash of the float pass's decisions, three bits and the camera rays'
@@ -176,15 +177,28 @@
  * 0.30000001192092896 in float). Set in the float scene only;
  * shaders/pigments.glsl trusts a flat face to lie exactly on a cell face
  * only without it. */
-#define TP2_SHAPE_MASK 0xffff
-#define TP2_SHAPE_INEXACT 0x10000
+#define TP2_SHAPE_MASK 0xf
+#define TP2_SHAPE_INEXACT 0x10
 /* And this one: some face of the flat object lies so near another
  * object's face, without being on the same plane, that float may find
  * both at one distance where double does not (host/pack/twins.h). Set in the
  * float scene of --precision auto only; shaders/shapes.glsl's
  * coincident_faces takes equal distances for coincident faces only
  * without it. */
-#define TP2_SHAPE_NEAR_TWIN 0x20000
+#define TP2_SHAPE_NEAR_TWIN 0x20
+/* A cylinder's or cone's base cap (or its top cap: one of them) lies in
+ * another object's face, or a triangle does (BASE): it is met by plane_t's
+ * arithmetic on that face's plane, kept in extra row ids.w, so that both
+ * give one distance (host/ties.h). A cap's record says so by a negative
+ * length; the code is compiled only under TP2_SPEC_TWINS. */
+#define TP2_SHAPE_TWIN_BASE 0x40
+#define TP2_SHAPE_TWIN_TOP 0x80
+/* Above the flags: the object's place in the scene file (SPEC 4, Ties:
+ * of two objects hit at one distance, the one listed first is the hit),
+ * up to TP2_ORDER_MAX (later ones share it, and the layout decides
+ * between them). A mesh's triangles share their mesh's. */
+#define TP2_SHAPE_ORDER_SHIFT 8
+#define TP2_ORDER_MAX 0xffffff
 
 /* Most faces of one polyhedron: its face count travels as a float, exact
  * to 2^24, and every ray that meets it loops over all of them. */

@@ -16,6 +16,7 @@
 #include "gpu_layout.h"
 #include "pigments.h"
 #include "shapes.h"
+#include "ties.h"
 #include "twins.h"
 #include "vec3.h"
 
@@ -36,6 +37,15 @@ struct camera_basis {
 /* A GPU primitive: primitive k of scene object `object`. */
 struct prim_ref {
     size_t object, k;
+};
+
+/* A surface given another plane by ties.h: a plane's or a face's row
+ * replaced, or a cap met through twin extra row `row`. */
+struct tie_entry {
+    uint32_t slot, part;
+    enum tie_role role;
+    size_t row;
+    double plane[4];
 };
 
 /* Everything both packings share, computed once in double. */
@@ -61,6 +71,11 @@ struct layout {
     struct twins *twins;
     size_t twins_streamed;
     double (*twin_planes)[4];
+    /* Coincident surfaces (ties.h): entries [tie_first[slot],
+     * tie_first[slot + 1]) are slot's; NULL where there are none. */
+    struct tie_entry *ties;
+    size_t *tie_first;
+    bool twins_compiled; /* TP2_SPEC_TWINS */
 };
 
 /* The parser has rejected eye == center and up parallel to the view. */
@@ -194,7 +209,8 @@ static void object_record(const struct scene *s, const struct layout *lay, size_
     const struct shape_kind *kind = &shape_kinds[o->kind];
     const double *p = scene_object_reals(s, o);
     memset(rec, 0, sizeof *rec);
-    ids[0] = kind->gpu_kind;
+    uint32_t order = ref->object < TP2_ORDER_MAX ? (uint32_t)ref->object : TP2_ORDER_MAX;
+    ids[0] = (int32_t)((uint32_t)kind->gpu_kind | order << TP2_SHAPE_ORDER_SHIFT);
     ids[1] = (int32_t)o->pigment;
     ids[2] = (int32_t)o->finish;
     ids[3] = (int32_t)*extra_at;
@@ -224,6 +240,31 @@ static void move_record(const struct scene *s, const struct layout *lay, size_t 
 {
     const struct scene_object *o = &s->objects[lay->slots[slot].object];
     shape_kinds[o->kind].move(rec, extra, lay->origin);
+}
+
+/* Slot's surfaces that ties.h gave another plane, in its packed record
+ * (moved), its extra rows and ids; a cap's twin row goes into all_rows
+ * where given (the whole extra buffer). */
+static void apply_ties(const struct layout *lay, size_t slot, struct shape_record *rec,
+                       double (*extra)[4], int32_t ids[4], double (*all_rows)[4])
+{
+    if (!lay->tie_first)
+        return;
+    for (size_t e = lay->tie_first[slot]; e < lay->tie_first[slot + 1]; e++) {
+        const struct tie_entry *t = &lay->ties[e];
+        if (t->role == TIE_PLANE) {
+            memcpy(rec->row[0], t->plane, sizeof t->plane);
+        } else if (t->role == TIE_FACE) {
+            memcpy(extra[t->part], t->plane, sizeof t->plane);
+        } else {
+            ids[0] |= t->part == 2 ? TP2_SHAPE_TWIN_TOP : TP2_SHAPE_TWIN_BASE;
+            ids[3] = (int32_t)t->row;
+            if (t->role == TIE_CAP)
+                rec->row[1][3] = -fabs(rec->row[1][3]); /* the record's flag */
+            if (all_rows)
+                memcpy(all_rows[t->row], t->plane, sizeof t->plane);
+        }
+    }
 }
 
 /* The largest coordinate magnitude of the eye, the lights and the
@@ -264,6 +305,222 @@ static void compare_packed(const struct scene *s, const struct layout *lay, size
         memcpy(f.plane, lay->twin_planes[i], sizeof f.plane);
         twins_compare(lay->twins, &f, lay->near_twin);
     }
+}
+
+/* The surfaces of primitive k of `object` (GPU slot `slot`) that may
+ * coincide with another object's (ties.h), packed and moved to `origin`
+ * (unless NULL), appended to *list; -1 when out of memory. */
+static int prim_surfaces(const struct scene *s, size_t object, size_t k, size_t slot,
+                         const double *origin, double (*rows)[4], struct tie_surface **list,
+                         size_t *n, size_t *cap)
+{
+    const struct scene_object *o = &s->objects[object];
+    const struct shape_kind *kd = &shape_kinds[o->kind];
+    int kind = kd->gpu_kind;
+    if (kind != TP2_SHAPE_PLANE && kind != TP2_SHAPE_POLYHEDRON && kind != TP2_SHAPE_BOX &&
+        kind != TP2_SHAPE_CYLINDER && kind != TP2_SHAPE_CONE && kind != TP2_SHAPE_TRIANGLE)
+        return 0;
+    struct shape_record rec;
+    memset(&rec, 0, sizeof rec);
+    kd->pack(scene_object_reals(s, o), o->count, k, &rec, rows);
+    if (origin)
+        kd->move(&rec, rows, origin);
+    struct tie_surface t[6];
+    size_t count = 0;
+    const double *r0 = rec.row[0], *r1 = rec.row[1];
+    if (kind == TP2_SHAPE_TRIANGLE) {
+        double planes[1][4];
+        shape_kinds[s->objects[object].kind].faces(&rec, NULL, planes);
+        t[count++] = (struct tie_surface){{planes[0][0], planes[0][1], planes[0][2],
+                                           planes[0][3]}, 0, 1, 0, TIE_TRIANGLE};
+    } else if (kind == TP2_SHAPE_PLANE) {
+        t[count++] = (struct tie_surface){{r0[0], r0[1], r0[2], r0[3]}, 0, 0, 0, TIE_PLANE};
+    } else if (kind == TP2_SHAPE_BOX) {
+        double planes[6][4];
+        count = shape_kinds[s->objects[object].kind].faces(&rec, NULL, planes);
+        for (size_t i = 0; i < count; i++)
+            t[i] = (struct tie_surface){{planes[i][0], planes[i][1], planes[i][2], planes[i][3]},
+                                        0, 0, 0, TIE_FIXED};
+    } else if (kind == TP2_SHAPE_CYLINDER || kind == TP2_SHAPE_CONE) {
+        double along = r0[0] * r1[0] + r0[1] * r1[1] + r0[2] * r1[2];
+        double top_radius = kind == TP2_SHAPE_CONE ? rec.row[2][0] : r0[3];
+        if (r0[3] > 0)
+            t[count++] = (struct tie_surface){{-r1[0], -r1[1], -r1[2], along}, 0, 1, 0, TIE_CAP};
+        if (top_radius > 0)
+            t[count++] = (struct tie_surface){{r1[0], r1[1], r1[2], -(along + r1[3])}, 0, 2, 0,
+                                              TIE_CAP};
+    }
+    size_t faces = kind == TP2_SHAPE_POLYHEDRON ? (size_t)r0[0] : count;
+    if (*n + faces > *cap) {
+        size_t more = 2 * *cap + faces + 64;
+        struct tie_surface *grown = realloc(*list, more * sizeof *grown);
+        if (!grown)
+            return -1;
+        *list = grown;
+        *cap = more;
+    }
+    for (size_t i = 0; i < faces; i++) {
+        struct tie_surface f = kind == TP2_SHAPE_POLYHEDRON
+                                   ? (struct tie_surface){{rows[i][0], rows[i][1], rows[i][2],
+                                                           rows[i][3]}, 0, (uint32_t)i, 0,
+                                                          TIE_FACE}
+                                   : t[i];
+        f.slot = (uint32_t)slot;
+        f.object = object;
+        (*list)[(*n)++] = f;
+    }
+    return 0;
+}
+
+static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t slot,
+                         double (*rows)[4], struct tie_surface **list, size_t *n,
+                         size_t *cap)
+{
+    const struct prim_ref *ref = &lay->slots[slot];
+    return prim_surfaces(s, ref->object, ref->k, slot, lay->moved ? lay->origin : NULL, rows,
+                         list, n, cap);
+}
+
+/* Whether some cap or triangle may lie in another object's surface, found
+ * in the scene's own coordinates before the layout, with room for the
+ * move to its origin (*found): the shaders' code for twin caps and
+ * triangles is compiled only then (TP2_SPEC_TWINS), which costs a
+ * cylinder's test a third more on lavapipe. -1 when out of memory. */
+static int early_twins(const struct scene *s, bool *found)
+{
+    *found = false;
+    double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
+    struct tie_surface *list = NULL;
+    size_t n = 0, cap = 0;
+    int rc = rows ? 0 : -1;
+    bool curved = false;
+    for (size_t i = 0; rc == 0 && i < s->nobjects; i++) {
+        int kind = shape_kinds[s->objects[i].kind].gpu_kind;
+        curved |= kind == TP2_SHAPE_CYLINDER || kind == TP2_SHAPE_CONE ||
+                  kind == TP2_SHAPE_TRIANGLE;
+        if (kind != TP2_SHAPE_TRIANGLE)
+            rc = prim_surfaces(s, i, 0, 0, NULL, rows, &list, &n, &cap);
+    }
+    double scale = vec3_max_abs(s->eye);
+    for (size_t i = 0; i < n; i++)
+        scale = fmax(scale, fabs(list[i].plane[3]));
+    scale *= 16; /* the move changes d by its rounding */
+    if (rc == 0 && curved && n > 0) {
+        ties_sort(list, n);
+        for (size_t i = 0; i < n && !*found; i++)
+            *found = list[i].role == TIE_CAP &&
+                     ties_near(list, n, list[i].plane, scale, list[i].object);
+        for (size_t i = 0; rc == 0 && i < s->nobjects && !*found; i++) {
+            const struct scene_object *o = &s->objects[i];
+            if (shape_kinds[o->kind].gpu_kind != TP2_SHAPE_TRIANGLE)
+                continue;
+            size_t prims = shape_kinds[o->kind].primitives(scene_object_reals(s, o), o->count);
+            for (size_t k = 0; rc == 0 && k < prims && !*found; k++) {
+                size_t before = n;
+                rc = prim_surfaces(s, i, k, 0, NULL, rows, &list, &n, &cap);
+                *found = rc == 0 && ties_near(list, before, list[before].plane, scale, i);
+                n = before;
+            }
+        }
+    }
+    free(rows);
+    free(list);
+    return rc;
+}
+
+static int by_slot(const void *x, const void *y)
+{
+    const struct tie_entry *a = x, *b = y;
+    return a->slot != b->slot ? (a->slot < b->slot ? -1 : 1)
+                              : a->part < b->part ? -1 : a->part > b->part;
+}
+
+/* Finds the coincident surfaces (ties.h) and what each becomes
+ * (lay->ties); a cap's twin rows are added to the extra buffer's end.
+ * Nothing to do without a plane, a polyhedron, a cylinder, a cone or a
+ * triangle. A triangle is compared only with the other kinds' surfaces:
+ * two meshes lying in one plane keep their own distances. */
+static int find_ties(const struct scene *s, struct layout *lay)
+{
+    int kinds = lay->bounded_kinds | lay->unbounded_kinds;
+    int changeable = 1 << TP2_SHAPE_PLANE | 1 << TP2_SHAPE_POLYHEDRON |
+                     1 << TP2_SHAPE_CYLINDER | 1 << TP2_SHAPE_CONE | 1 << TP2_SHAPE_TRIANGLE;
+    if (!(kinds & changeable) || s->nobjects < 2)
+        return 0;
+    if (lay->nprims > UINT32_MAX)
+        return 0;
+    double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
+    struct tie_surface *list = NULL;
+    size_t n = 0, cap = 0;
+    int rc = rows ? 0 : -1;
+    /* The other kinds' surfaces first, then the triangles that lie in one */
+    for (size_t slot = 0; rc == 0 && slot < lay->nprims; slot++)
+        if (shape_kinds[s->objects[lay->slots[slot].object].kind].gpu_kind != TP2_SHAPE_TRIANGLE)
+            rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
+    size_t others = n;
+    if (rc == 0 && others > 0 && (kinds & 1 << TP2_SHAPE_TRIANGLE))
+        ties_sort(list, others);
+    for (size_t slot = 0; rc == 0 && others > 0 && slot < lay->nprims; slot++)
+        if (shape_kinds[s->objects[lay->slots[slot].object].kind].gpu_kind == TP2_SHAPE_TRIANGLE) {
+            size_t before = n;
+            rc = slot_surfaces(s, lay, slot, rows, &list, &n, &cap);
+            if (rc == 0 &&
+                !ties_near(list, others, list[before].plane, lay->scale, SIZE_MAX))
+                n = before;
+        }
+    free(rows);
+    double (*canonical)[4] = malloc((n ? n : 1) * sizeof *canonical);
+    bool *twin = malloc((n ? n : 1) * sizeof *twin);
+    if (rc == 0 && (!canonical || !twin))
+        rc = -1;
+    if (rc == 0)
+        rc = ties_group(list, n, lay->scale, canonical, twin);
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        twin[i] &= lay->twins_compiled || list[i].role < TIE_CAP;
+    size_t m = 0;
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        if (twin[i] && list[i].role != TIE_FIXED &&
+            (list[i].role >= TIE_CAP || memcmp(canonical[i], list[i].plane, sizeof canonical[i])))
+            m++;
+    if (rc == 0 && m > 0) {
+        lay->ties = malloc(m * sizeof *lay->ties);
+        lay->tie_first = calloc(lay->nprims + 1, sizeof *lay->tie_first);
+        if (!lay->ties || !lay->tie_first)
+            rc = -1;
+    }
+    if (rc == 0 && m > 0) {
+        size_t e = 0;
+        for (size_t i = 0; i < n; i++)
+            if (twin[i] && list[i].role != TIE_FIXED &&
+                (list[i].role >= TIE_CAP ||
+                 memcmp(canonical[i], list[i].plane, sizeof canonical[i]))) {
+                lay->ties[e] = (struct tie_entry){list[i].slot, list[i].part, list[i].role, 0,
+                                                  {0}};
+                memcpy(lay->ties[e].plane, canonical[i], sizeof canonical[i]);
+                e++;
+            }
+        qsort(lay->ties, m, sizeof *lay->ties, by_slot);
+        /* One twin row per cap or triangle: a cylinder standing on one
+         * face and touching another with its top keeps its base's (the
+         * shader reads one row: a cylinder's test costs less). */
+        size_t kept = 0;
+        for (e = 0; e < m; e++) {
+            struct tie_entry t = lay->ties[e];
+            if (t.role >= TIE_CAP && kept > 0 && lay->ties[kept - 1].slot == t.slot &&
+                lay->ties[kept - 1].role >= TIE_CAP)
+                continue;
+            if (t.role >= TIE_CAP)
+                t.row = lay->nextra++;
+            lay->ties[kept++] = t;
+            lay->tie_first[t.slot + 1]++;
+        }
+        for (size_t slot = 0; slot < lay->nprims; slot++)
+            lay->tie_first[slot + 1] += lay->tie_first[slot];
+    }
+    free(list);
+    free(canonical);
+    free(twin);
+    return rc;
 }
 
 /* Starts the search for near twins (twins.h): every flat object's faces
@@ -307,6 +564,7 @@ static int twins_start(const struct scene *s, struct layout *lay)
         object_record(s, lay, slot, &rec, rows, &extra_at, ids);
         if (lay->moved)
             move_record(s, lay, slot, &rec, rows);
+        apply_ties(lay, slot, &rec, rows, ids, NULL);
         struct twin_face f;
         size_t count = packed_faces(s, lay, slot, &rec, (const double (*)[4])rows, &f);
         if (n + count > cap) {
@@ -608,6 +866,9 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
+    if (rc == 0)
+        rc = early_twins(s, &lay.twins_compiled);
+    out->features.twins = lay.twins_compiled;
     out->bounded = lay.nbounded;
     out->unbounded = lay.nprims - lay.nbounded;
     if (rc == 0 && opt->features_known)
@@ -621,6 +882,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     free(bounded);
     if (rc == 0)
         rc = layout_texels(s, &lay);
+    if (rc == 0)
+        rc = find_ties(s, &lay);
     if (rc == 0 && twin && !opt->use_double)
         rc = twins_start(s, &lay);
     /* The twin (--precision auto's double scene) is packed beside the
@@ -652,6 +915,8 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     free(lay.texel_offset);
     free(lay.near_twin);
     free(lay.twin_planes);
+    free(lay.ties);
+    free(lay.tie_first);
     if (rc != 0) {
         packed_scene_free(out);
         if (twin)

@@ -21,6 +21,7 @@ struct scene_features {
     int unbounded_shape; /* ... of the unbounded ones, else -1 */
     bool bvh; /* enough bounded objects that the BVH beats a plain loop */
     int samples;
+    bool twins; /* some cap or triangle lies in another object's face (ties.h) */
 };
 
 struct pack_options {
