@@ -20,7 +20,7 @@ pruning is the exact image of SPEC 4, the reference.
    spheres.txt at --acc-size (default 400x300), the scene's own samples:
    each setting's PFM against the exact one (double --bailout 0, the same
    samples, so only precision and pruning vary), by tp2-imgcmp. A scene
-   meets the accuracy bar (README.TXT, tests/check_accuracy.py) when at
+   meets the accuracy bar (docs/accuracy.md, tests/check_accuracy.py) when at
    least 99.95% of channel values are within +-1 level and at most 10
    pixels are off by more than 8 levels.
 3. Samples per pixel. The default setting at --spp-list (default 1,4,16)

@@ -18,7 +18,7 @@ with --precision mixed (unless --precision says otherwise: mixed is the
 default, auto, on a GPU; on lavapipe auto is double throughout, whose
 error is pruning's alone) and exactly (--precision double --bailout 0),
 both as PFM, then asks tp2-imgcmp whether the first image meets
-README.TXT's accuracy bar (at least 99.95% of channel values within one
+the accuracy bar of docs/accuracy.md (at least 99.95% of channel values within one
 level, at most 10 pixels off by more than 8 levels). Prints one line per
 seed and a summary; exits 1 if any seed misses the bar. Slow (a minute
 or more per seed on lavapipe for the glass ones): not a CI test.

@@ -32,8 +32,7 @@ const Start NOWHERE = Start(-1, false);
 #include "shapes.glsl"
 
 // A ray tests BVH boxes in float in both builds (the boxes are floats,
-// and float's box tests are the cheaper on lavapipe's SIMD: README
-// "Performance"). BoxRay is the ray as they see it.
+// and float's box tests are the cheaper on lavapipe's SIMD: docs/decisions.md). BoxRay is the ray as they see it.
 // Each slab's t carries two roundings of relative size 2^-24, so the exit
 // is widened by 2^-21 of itself: a ray grazing a box's face far from the
 // camera must not miss it (Ize, "Robust BVH Ray Traversal"). The double
@@ -183,7 +182,7 @@ Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
 // object test appears once, so each kind's code is compiled once (see
 // trace_step). A descent from a node to the leaf it leads to is one step (an
 // inner loop): lanes descending no longer pay an object test per node for the
-// lanes testing objects beside them (README "Performance": 11% on BVH scenes
+// lanes testing objects beside them (docs/decisions.md: 11% on BVH scenes
 // on lavapipe; testing a leaf's objects in an inner loop as well, or popping
 // there too, was no better).
 Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first,

@@ -69,8 +69,8 @@ bool exact_quotient(real p, real o, real size, real x)
 // A flat face along a cell face (nf an axis, p exactly on it) lies there
 // in both precisions where float's numbers are double's (the face's,
 // same_in_float; the side's, pigment_q.x, unless x is 0) and float
-// computed x without rounding. Until 2026-11-30 any x that came out whole
-// counted, and a face at 0.3 under cells of 0.1 (3 in float,
+// computed x without rounding. Counting any x that came out whole (as an
+// earlier build did) let a face at 0.3 under cells of 0.1 (3 in float,
 // 2.9999999999999996 in double), or one 8571.0307 from 0 under cells of
 // 0.03 (x rounded to 1/32 of a cell there), flipped whole faces. A curved
 // face does not count, though its normal may round to an axis: a

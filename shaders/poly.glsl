@@ -23,7 +23,7 @@ const int ROOT_STEPS = 60;
 // sum |c_k s^k| / |f'|, so the one more step a tol.y of 4e-16 took is
 // spared: for the cuts (a slope's roots, which only split an interval into
 // monotone pieces) torus.txt's double render took 0.96-1.00 of its time,
-// for the roots too 0.84 (README "Performance"), the same bytes. Halving
+// for the roots too 0.84 (docs/decisions.md), the same bytes. Halving
 // still goes on to 4e-16: it gains a bit a step, not digits. In float
 // the last step changed an image (a pixel of torus-edge-on by 3 levels),
 // so float keeps it.

@@ -11,7 +11,7 @@
 // are products, sums, a sqrt and a division in a fixed order: GLSL's own
 // leave order and method to the driver (an NVIDIA H200's double image of
 // a course file differed from lavapipe's at 37 pixels of such a row, and
-// at none with these; README "Accuracy"). In float they are GLSL's own:
+// at none with these; docs/accuracy.md). In float they are GLSL's own:
 // the float pass's doubt covers their rounding.
 
 #ifdef TP2_DOUBLE

@@ -846,7 +846,7 @@ void surface_point(int i, int part, rvec3 o, rvec3 d, real t,
 
 // How many times a plain intersection's rounding object i's may have: a
 // torus's quartic, solved by isolation, loses more digits (256 times:
-// measured, README.TXT "Accuracy").
+// measured, docs/accuracy.md).
 float hit_rounding(int i)
 {
     int kind = shape_of(i);

@@ -30,8 +30,8 @@
 //
 // The doubt is a bound on float's error, carried along each ray and
 // measured in pixels against the footprint of its pixel (below). It is a
-// first-order estimate with a safety factor, not a proof: README.TXT
-// "Accuracy" has what it was checked against.
+// first-order estimate with a safety factor, not a proof: docs/accuracy.md
+// has what it was checked against.
 
 const uint UNSURE = TP2_SIG_UNSURE;       // a decision within float's error of flipping
 const uint SENSITIVE = TP2_SIG_SENSITIVE; // boundaries here move by frame.limits.y pixels or more
@@ -210,7 +210,7 @@ bool at_stake(float stake)
 // error is a share of every footprint and moves long edges by a few
 // hundredths of a pixel, flipping that share of the pixels along them
 // (random scenes with 17 and 14 pixels off by more than 8 levels at 400
-// x 300: README.TXT "Accuracy"). The rest of a doubt carried through
+// x 300: docs/accuracy.md). The rest of a doubt carried through
 // curved mirrors and lenses holds the beam's spread, far above the
 // error, and counts from the tenth.
 const float OWN_SHARE = 1.0 / 10.0;
@@ -227,7 +227,7 @@ void seen(inout uint sig, float pixels, float own, float stake)
 // field of view, where float's error is a share of every footprint). For
 // camera rays only, whose doubt is their own rounding: deeper, it carries
 // the beam's spread through lenses, and in glass interiors would mark
-// pixels that no measured image got wrong (README.TXT "Accuracy").
+// pixels that no measured image got wrong (docs/accuracy.md).
 void shifted(inout uint sig, float pixels, float stake)
 {
     if (at_stake(stake) && pixels >= frame.limits.y)
@@ -247,7 +247,7 @@ void shifted(inout uint sig, float pixels, float stake)
 // pixels of length for each pixel it may flip. (Recorded at any move,
 // they marked quadric.txt's 5.4% of pixels instead of 2.4%; recorded at
 // any depth, spheres.txt's 9.9% instead of 5.4%, as deeper rays' doubts
-// grow through curved mirrors. README.TXT "Accuracy".) Lit and unlit (the
+// grow through curved mirrors. docs/accuracy.md.) Lit and unlit (the
 // light behind the surface, or no hit) are not told apart, so that
 // terminators and silhouettes are not marked for it. One flip changes a
 // bit wherever no other light of its class shadows the point (always,
@@ -286,8 +286,7 @@ void shadows_kept(inout uint sig, int depth, float pixels, float stake)
 // 1e-4, and shadows thinner than that flipped
 // (tests/stress/needle-shadows-mirrored). Deeper rays' whole doubts grow
 // with the beam through mirror and glass balls, and counted here they
-// marked spheres.txt's 9.0% of pixels instead of 5.4% (README.TXT
-// "Accuracy").
+// marked spheres.txt's 9.0% of pixels instead of 5.4% (docs/accuracy.md).
 float shadow_origin_doubt(int depth, HitDoubt h, float sizes)
 {
     float along = depth == 0 ? h.along : h.own * h.width_along;
@@ -312,8 +311,7 @@ void shadow_grazes(inout uint sig, float graze, int depth, HitDoubt h, float siz
 // factor of 2, as shadow_grazes'). Neighbours find the boundaries of
 // which object a ray meets only where rounding may move them by a share
 // of a pixel (SENSITIVE); a straight edge along a row of pixel centers (a
-// box's or a mesh's, seen from a camera on its axes: README.TXT
-// "Accuracy") flips a run of pixels however little it moves. The edge
+// box's or a mesh's, seen from a camera on its axes: docs/accuracy.md) flips a run of pixels however little it moves. The edge
 // tests (edge_graze, exit_graze, triangle_graze) count only doubts
 // that reach at most TP2_EDGE_REACH of the scene's scale (camera rays,
 // flat mirrors' and flat glass's): a beam spread by curved mirrors and
@@ -363,7 +361,7 @@ vec2 area_share(vec3 lit, bool shadowed)
 // (as seen). A flip weighs the most one sample adds. Far from 0, where
 // float's rounding moves edges by hundredths of a pixel, penumbras were
 // left 2-5 levels off at a scattered few pixels in a hundred (random
-// scene 556 of README.TXT "Accuracy").
+// scene 556 of docs/accuracy.md).
 void penumbra_seen(inout uint sig, int depth, vec2 penumbra, HitDoubt h, float stake)
 {
     float moved = depth == 0 ? h.pixels / SHADOW_SHARE : h.own / OWN_SHARE;

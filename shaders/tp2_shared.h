@@ -41,7 +41,7 @@
  * texel buffers of 16-byte texels (utextureBuffer over R32G32B32A32_UINT,
  * bits reinterpreted): on lavapipe a texel fetch loads a whole texel,
  * where a storage-buffer load loops over the SIMD lanes for each word
- * (renders 4-19% faster, README "Performance"). An object is
+ * (renders 4-19% faster, docs/decisions.md). An object is
  * TP2_OBJECT_TEXELS_* texels: rows a, b, c of TP2_ROW_TEXELS_* each, then
  * its ids; a node is TP2_NODE_TEXELS: x, y, z, then its links. */
 #define TP2_TEXEL_BYTES 16
@@ -110,7 +110,7 @@
  * close to float's error moves it, a ray's own or a hit's fresh
  * rounding: signature.glsl's seen); a decision counts where
  * flipping it could change the pixel by TP2_SIG_STAKE or more (one 8-bit
- * level, for radiance within [0, 1]). README.TXT "Accuracy" has the
+ * level, for radiance within [0, 1]). docs/accuracy.md has the
  * measurements that chose them. */
 #define TP2_SIG_PIXELS 0.1
 #define TP2_SIG_STAKE (1.0 / 255.0)
@@ -228,7 +228,7 @@
 /* The pixels 8 lanes of one lavapipe SIMD batch trace together, in the
  * band pass (trace.comp, pixel_in_group) and in the retrace pass's list
  * (host/render/retrace.c): a 4 x 2 block, whose rays diverge less than a row of
- * 8 pixels' (README "Performance"). */
+ * 8 pixels' (docs/decisions.md). */
 #define TP2_LANE_BLOCK_X 4
 #define TP2_LANE_BLOCK_Y 2
 

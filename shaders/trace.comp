@@ -49,7 +49,7 @@ uint ray_tally[TP2_STAT_COUNT]; // this invocation's rays, by kind
 // its weight times 0.5, the middle of [0, 1], in place of the radiance it
 // would bring back; where radiance is within [0, 1] each such guess is off
 // by at most half its weight, so a sample's error is at most W / 2: half
-// an 8-bit level for the default 1/255 (README "Accuracy"). Without the
+// an 8-bit level for the default 1/255 (docs/accuracy.md). Without the
 // budget, a deep tree prunes thousands of faint rays whose weights add up
 // to whole levels; without the guess, the same bound allows half the
 // budget, and more rays are traced.
@@ -328,7 +328,7 @@ void count_rays()
 // A parked doubt in slot `slot`, written and read at constant indices (a
 // loop over the slots, unrolled): lavapipe then keeps the few slots in
 // registers, where indexing them by slot cost the float pass of
-// --precision auto 15-20% on glass scenes (README "Performance"). The
+// --precision auto 15-20% on glass scenes (docs/decisions.md). The
 // parked rays themselves were no faster so.
 void park_doubt(inout uvec2 parked[STACK_SIZE], int slot, uvec2 doubt)
 {

@@ -1176,7 +1176,7 @@ def case_mixed_same_when_fused(c):
     built to make float fail, that flips float's decisions (pixels off by
     more than 8 levels between the two devices), while mixed's two images
     stay within one level of each other almost everywhere, with none off
-    by more than 8, and both meet README's accuracy bar against the exact
+    by more than 8, and both meet the accuracy bar (docs/accuracy.md) against the exact
     image (within one level for >= 99.95% of values, no pixel off by more
     than 8). quadric-far at this size has two pixels on the curve where
     its quadrics cross, 1e-7 of their distance apart, which float cannot

@@ -25,8 +25,8 @@ struct cli {
 };
 
 /* The default --bailout, POV-Ray's default adc_bailout: a ray this faint
- * adds at most one 8-bit level where radiance is at most 1 (README.TXT,
- * "Accuracy", has its measured error). */
+ * adds at most one 8-bit level where radiance is at most 1 (docs/design.md has the
+ * proof, docs/accuracy.md the measured error). */
 #define TP2_DEFAULT_BAILOUT (1.0 / 255.0)
 
 /* Fills c from argv. Returns 0, or -1 after printing "tp2: ..." and a hint

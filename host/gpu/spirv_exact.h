@@ -7,7 +7,7 @@
 #include <stdint.h>
 
 /* The double build is the exact image's model, and the default's retrace
- * settles in it the decisions float cannot (README "Accuracy"). Where a
+ * settles in it the decisions float cannot (docs/accuracy.md). Where a
  * point lies exactly on a decision's boundary (a checker cell face
  * through a row of pixel centers, as course files with whole-number
  * coordinates have), the last bit of each rounding decides, so a device

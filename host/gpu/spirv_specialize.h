@@ -8,8 +8,7 @@
 
 /* lavapipe turns the whole module into its IR, inlining every call, and
  * only then drops what the specialization constants rule out: most of the
- * time it takes to make a pipeline goes to code that cannot run (README
- * "Performance"). This finds, by sparse conditional constant propagation
+ * time it takes to make a pipeline goes to code that cannot run (docs/decisions.md). This finds, by sparse conditional constant propagation
  * over 32-bit integers and booleans (Wegman and Zadeck), the blocks of
  * each function that cannot run with the constants `values` (indexed by
  * SpecId; ids from `count` on keep the module's defaults), empties them,

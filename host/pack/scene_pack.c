@@ -22,7 +22,7 @@
 
 /* Fewer bounded objects than this are tested in a plain loop: on
  * lavapipe's 8-wide SIMD the loop beats a divergent tree walk up to about
- * here (measured with --bvh-min, README.TXT "Performance"). */
+ * here (measured with --bvh-min, docs/decisions.md). */
 #define TP2_BVH_MIN_OBJECTS 16
 
 _Static_assert(TP2_BVH_STACK >= TP2_BVH_MAX_DEPTH,
@@ -860,8 +860,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     out->features.bounded_shape = single_kind(lay.bounded_kinds);
     out->features.unbounded_shape = single_kind(lay.unbounded_kinds);
     /* The bounded objects' one kind, known beside unbounded ones of
-     * several kinds, made the shader slower, not faster (README.TXT
-     * "How it is built"): then neither is known. */
+     * several kinds, made the shader slower, not faster (docs/design.md): then neither is known. */
     if (lay.unbounded_kinds != 0 && out->features.unbounded_shape < 0)
         out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;

@@ -568,7 +568,7 @@ static void describe_precision(const struct renderer *r, const struct render_opt
 }
 
 /* Auto on a CPU device is double throughout, with the default's pruning
- * (README "Performance", "--precision auto against float"): there a
+ * (docs/decisions.md, "--precision auto against float"): there a
  * double lane costs about two float lanes (half as many fit a SIMD
  * register), not the tens of times of most GPUs, and mixed's bookkeeping
  * for its retrace costs about as much; the image is then the exact

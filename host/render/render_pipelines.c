@@ -159,7 +159,7 @@ static int choose_code(struct renderer *r)
 
 /* Pass t's shader module for a pipeline with the specialization constants
  * `values`: its code without what they rule out (spirv_specialize.h; a
- * pipeline made 1.5-3 times faster on lavapipe, README "Performance"),
+ * pipeline made 1.5-3 times faster on lavapipe, docs/decisions.md),
  * or as it is where that fails or under the test hook TP2_SPECIALIZE=0. */
 static VkResult create_module(const struct renderer *r, const struct tracer *t,
                               const int32_t values[TP2_SPEC_COUNT], VkShaderModule *module)

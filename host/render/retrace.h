@@ -35,7 +35,7 @@
  * list goes by blocks of RETRACE_BLOCK_X x RETRACE_BLOCK_Y pixels (row
  * order within a block, blocks in row order): the retrace pass gives 8
  * consecutive entries to the 8 lanes of a SIMD batch on lavapipe, and
- * nearby pixels' rays diverge less (README "Performance"). */
+ * nearby pixels' rays diverge less (docs/decisions.md). */
 #define RETRACE_BLOCK_X TP2_LANE_BLOCK_X
 #define RETRACE_BLOCK_Y TP2_LANE_BLOCK_Y
 

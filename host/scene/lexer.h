@@ -7,8 +7,7 @@
  *
  * The text streams through a window of bounded size (about 128 KiB), from
  * a file or from memory alike: memory follows the scene, not the size of
- * the input, and an error shows as soon as the text does (README.TXT,
- * "Input limits"). So a token is at most LEXER_TOKEN_MAX bytes long. */
+ * the input, and an error shows as soon as the text does (docs/format.md). So a token is at most LEXER_TOKEN_MAX bytes long. */
 #ifndef TP2_LEXER_H
 #define TP2_LEXER_H
 

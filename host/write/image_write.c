@@ -122,8 +122,7 @@ static int png_begin(struct image_writer *w)
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     /* The Sub filter alone and zlib level 3, not libpng's all filters at
      * level 6: 3-4x less CPU per image (which a GPU renders in a fraction
-     * of that), files 8-40% larger (bench/png_levels.c, README.TXT
-     * "Performance"). */
+     * of that), files 8-40% larger (bench/png_levels.c, docs/decisions.md). */
     png_set_filter(w->png, 0, PNG_FILTER_SUB);
     png_set_compression_level(w->png, 3);
     png_write_info(w->png, w->info);
