@@ -114,9 +114,12 @@ bool listed_before(int a, int b)
 // Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
 // an any-hit ray has found one. An exact tie goes to the object listed
 // first in the scene file, whatever order the BVH or a plain loop tests
-// them in (it differs where mixed's float pass grows boxes).
+// them in (it differs where mixed's float pass grows boxes). by_slot: the
+// caller knows that h.object, if any, is in slots in scene order with i
+// (trace_plain), so the slots decide a tie; a constant, as lavapipe
+// reads listed_before's records for every object tested, tie or not.
 bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
-                 vec2 doubt)
+                 vec2 doubt, bool by_slot)
 {
     int part;
     float edge = NO_EDGE;
@@ -125,7 +128,8 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
     bool grazed = SIGNATURES && edge < NO_EDGE;
     if (grazed && edge <= float(h.t) + most_reach())
         h.edge = min(h.edge, edge);
-    bool nearer = (t < h.t || (t == h.t && h.object >= 0 && listed_before(i, h.object))) && !(any_hit && grazed);
+    bool first_listed = by_slot ? i < h.object : h.object >= 0 && listed_before(i, h.object);
+    bool nearer = (t < h.t || (t == h.t && first_listed)) && !(any_hit && grazed);
     if (nearer) {
         h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
     } else if (SIGNATURES && t < h.next) {
@@ -142,19 +146,24 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
 // kinds for each object it tests (one loop where both are one kind). A
 // `first` of the first loop's objects is tested first (k = -1); another
 // in its turn only (the hint is a guess: any occluder answers the same).
+// Without a BVH the bounded objects' slots are in scene order
+// (host/pack/scene_pack.c, order_bounded), and the unbounded ones' too,
+// so a loop over the bounded ones alone decides ties by slot.
 Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
 {
     Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
     const bool two_kinds = UNBOUNDED_SHAPE >= 0 && UNBOUNDED_SHAPE != BOUNDED_SHAPE;
+    const bool bounded_only = two_kinds || UNBOUNDED_SHAPE < 0;
     int total = frame.geometry.x + frame.geometry.y;
     int split = two_kinds ? frame.geometry.x : total;
     bool done = false;
     int k = OCCLUDER_HINT && HAS_AREA && first >= 0 && first < split ? -1 : 0;
     for (; k < split && !done; ++k)
-        done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt);
+        done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt,
+                           bounded_only);
     if (two_kinds)
         for (int i = split; i < total && !done; ++i)
-            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt);
+            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt, false);
     return h;
 }
 
@@ -210,7 +219,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         int link = 0;       // a child to enter after this step, if `enter`
         bool enter = false;
         if (i < end) {
-            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt))
+            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt, false))
                 break;
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out

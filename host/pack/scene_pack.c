@@ -55,7 +55,7 @@ struct layout {
     bool moved;               /* origin != 0 */
     double eye[3];            /* from origin */
     double scale;             /* layout_scale's, before --precision auto grows the BVH */
-    size_t nprims, nbounded;  /* slots [0, nbounded) are in BVH order */
+    size_t nprims, nbounded;  /* slots [0, nbounded): in BVH order if rays walk it, else in scene order */
     struct prim_ref *slots;   /* slot -> primitive */
     size_t nextra;            /* rows of the extra buffer */
     struct bvh bvh;
@@ -746,10 +746,13 @@ static void place_origin(const struct scene *s, struct layout *lay)
         bvh_move(&lay->bvh, lay->origin);
 }
 
-/* Builds the BVH over the bounded primitives and puts their slots in its
- * order. */
+/* Builds the BVH over the bounded primitives and, if rays walk it
+ * (use), puts their slots in its order. Else they stay in scene order,
+ * so that the shader's plain loop decides a tie between two of them by
+ * their slots (shaders/intersect.glsl, trace_plain), and the tree, its
+ * root box aside, is not read. */
 static int order_bounded(const struct scene *s, struct layout *lay,
-                         const struct prim_ref *bounded, double *bvh_time)
+                         const struct prim_ref *bounded, bool use, double *bvh_time)
 {
     double t0 = clock_seconds();
     struct bounded_prims source = {s, bounded};
@@ -758,7 +761,7 @@ static int order_bounded(const struct scene *s, struct layout *lay,
     if (built != 0)
         return -1;
     for (size_t slot = 0; slot < lay->nbounded; slot++)
-        lay->slots[slot] = bounded[lay->bvh.order[slot]];
+        lay->slots[slot] = bounded[use ? lay->bvh.order[slot] : slot];
     return 0;
 }
 
@@ -873,7 +876,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     if (rc == 0 && opt->features_known)
         opt->features_known(&out->features, opt->user);
     if (rc == 0)
-        rc = order_bounded(s, &lay, bounded, &out->bvh_time);
+        rc = order_bounded(s, &lay, bounded, out->features.bvh, &out->bvh_time);
     if (rc == 0) {
         place_origin(s, &lay);
         lay.scale = layout_scale(s, &lay);
