@@ -154,20 +154,26 @@ void exit_graze(real t1, float c1, real t2, float c2, rvec3 o, vec2 doubt, inout
 }
 
 // Clips s by the slab lo <= oa + t da <= hi of a ray whose coordinate along
-// an axis is oa + t da; parts p_lo and p_hi are its two faces.
-void clip_slab(inout Span s, real oa, real da, real lo, real hi, int p_lo, int p_hi)
+// an axis is oa + t da, met at t_lo and t_hi (where da != 0); parts p_lo
+// and p_hi are its two faces. One clip, its ends chosen by da's sign:
+// lavapipe runs both arms of an if.
+void clip_slab_at(inout Span s, real oa, real da, real lo, real hi, real t_lo, real t_hi,
+                  int p_lo, int p_hi)
 {
     if (da == 0.0) {
         if (oa < lo || oa > hi)
             s.t_in = NO_HIT; // parallel and outside: empty
         return;
     }
-    real t_lo = (lo - oa) / da;
-    real t_hi = (hi - oa) / da;
-    if (da > 0.0)
-        clip(s, t_lo, t_hi, p_lo, p_hi, float(da));
-    else
-        clip(s, t_hi, t_lo, p_hi, p_lo, float(-da));
+    bool up = da > 0.0;
+    clip(s, up ? t_lo : t_hi, up ? t_hi : t_lo, up ? p_lo : p_hi, up ? p_hi : p_lo,
+         float(abs(da)));
+}
+
+// The same, met where the ray's coordinate is lo and hi.
+void clip_slab(inout Span s, real oa, real da, real lo, real hi, int p_lo, int p_hi)
+{
+    clip_slab_at(s, oa, da, lo, hi, (lo - oa) / da, (hi - oa) / da, p_lo, p_hi);
 }
 
 // The hit a convex solid's span gives (see the rules at the top).
@@ -383,19 +389,13 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
     Span s = WHOLE_LINE;
-    if (!twin) {
-        clip_slab(s, oa, da, 0.0, h, 1, 2);
-    } else if (da == 0.0) {
-        if (oa < 0.0 || oa > h)
-            s.t_in = NO_HIT; // parallel and outside: empty
-    } else {
-        real t_lo = cap_part == 1 ? cap_t - t0 : (0.0 - oa) / da;
-        real t_hi = cap_part == 2 ? cap_t - t0 : (h - oa) / da;
-        if (da > 0.0)
-            clip(s, t_lo, t_hi, 1, 2, float(da));
-        else
-            clip(s, t_hi, t_lo, 2, 1, float(-da));
+    real t_lo = (0.0 - oa) / da;
+    real t_hi = (h - oa) / da;
+    if (TWINS) { // the twin cap's plane in place of the slab's face
+        t_lo = cap_part == 1 ? cap_t - t0 : t_lo;
+        t_hi = cap_part == 2 ? cap_t - t0 : t_hi;
     }
+    clip_slab_at(s, oa, da, 0.0, h, t_lo, t_hi, 1, 2);
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
