@@ -359,11 +359,13 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // slab between the caps. Its radius at height z along the axis is
 // r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
-// A cap that lies in another object's face (TP2_SHAPE_TWIN_BASE, _TOP;
-// the record's length is then negative) is met as that face is, by
-// plane_cross on its plane from the ray as it came (host/ties.h), so that
-// the two tie exactly: the span is found as for any cap, and where it
-// enters or leaves by that cap, the distance is the plane's.
+// A cap that lies in another object's face (a twin cap: the record's
+// length is then negative) is met as that face is (host/pack/ties.h):
+// packing made the axis that face's normal (up to its sign) and put the
+// face's place along the axis in c.y, so (c.y - axis.o) / (axis.d), from
+// the ray as it came, is plane_cross's arithmetic on that plane, bit for
+// bit, with no row beyond the record read. The span is found as for any
+// cap, and where it enters or leaves by that cap, the distance is that.
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
@@ -371,15 +373,7 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     bool twin = TWINS && axis.w < 0.0;
     real h = abs(axis.w);
     real k = (r1 - base.w) / h;
-    real cap_t = NO_HIT;
-    int cap_part = -1; // the twin cap, if its plane is not parallel to the ray
-    if (twin) { // one cap at most (host/scene_pack.c, find_ties)
-        ivec4 ids = object_ids(i);
-        rvec4 plane = extra_row(ids.w);
-        real denom = rdot(plane.xyz, d);
-        cap_t = denom != 0.0 ? plane_cross(plane, o, denom) : NO_HIT;
-        cap_part = denom == 0.0 ? -1 : (ids.x & TP2_SHAPE_TWIN_TOP) != 0 ? 2 : 1;
-    }
+    real cap_num = TWINS ? object_row(i, 2).y - rdot(axis.xyz, o) : 0.0;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
@@ -388,13 +382,17 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     rvec3 dp = d - da * axis.xyz;
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
-    Span s = WHOLE_LINE;
-    real t_lo = (0.0 - oa) / da;
-    real t_hi = (h - oa) / da;
-    if (TWINS) { // the twin cap's plane in place of the slab's face
-        t_lo = cap_part == 1 ? cap_t - t0 : t_lo;
-        t_hi = cap_part == 2 ? cap_t - t0 : t_hi;
+    // The twin cap, unless the ray runs along it: the top where c.y lies
+    // nearer it than the base (cap_num + oa - t0 da is c.y - axis.base).
+    int cap_part = twin && da != 0.0 ? (cap_num + oa - t0 * da > 0.5 * h ? 2 : 1) : -1;
+    real t_lo = (cap_part == 1 ? cap_num : 0.0 - oa) / da;
+    real t_hi = (cap_part == 2 ? cap_num : h - oa) / da;
+    real cap_t = cap_part == 1 ? t_lo : t_hi; // from the ray's own origin
+    if (TWINS) {
+        t_lo = cap_part == 1 ? t_lo - t0 : t_lo;
+        t_hi = cap_part == 2 ? t_hi - t0 : t_hi;
     }
+    Span s = WHOLE_LINE;
     clip_slab_at(s, oa, da, 0.0, h, t_lo, t_hi, 1, 2);
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
@@ -417,7 +415,7 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
-    if (twin) {
+    if (TWINS) {
         s.t_in = s.part_in == cap_part && s.t_in > -NO_HIT ? cap_t : s.t_in;
         s.t_out = s.part_out == cap_part && s.t_out < NO_HIT ? cap_t : s.t_out;
     }

@@ -243,7 +243,7 @@ static void move_record(const struct scene *s, const struct layout *lay, size_t 
 }
 
 /* Slot's surfaces that ties.h gave another plane, in its packed record
- * (moved), its extra rows and ids; a cap's twin row goes into all_rows
+ * (moved), its extra rows and ids; a triangle's twin row goes into all_rows
  * where given (the whole extra buffer). */
 static void apply_ties(const struct layout *lay, size_t slot, struct shape_record *rec,
                        double (*extra)[4], int32_t ids[4], double (*all_rows)[4])
@@ -256,11 +256,22 @@ static void apply_ties(const struct layout *lay, size_t slot, struct shape_recor
             memcpy(rec->row[0], t->plane, sizeof t->plane);
         } else if (t->role == TIE_FACE) {
             memcpy(extra[t->part], t->plane, sizeof t->plane);
-        } else {
+        } else if (t->role == TIE_CAP) {
+            /* The axis becomes the plane's normal, turned its way (they
+             * differ by the tolerance at most), and c.y the plane's place
+             * along it: shaders/shapes.glsl, hit_tapered, then meets the
+             * cap by plane_cross's arithmetic on this plane. A negative
+             * length says so. */
+            double *axis = rec->row[1];
+            double sign = vec3_dot(axis, t->plane) < 0 ? -1 : 1;
+            for (int a = 0; a < 3; a++)
+                axis[a] = sign * t->plane[a];
+            axis[3] = -fabs(axis[3]);
+            rec->row[2][1] = -sign * t->plane[3] + 0.0; /* no -0 */
             ids[0] |= t->part == 2 ? TP2_SHAPE_TWIN_TOP : TP2_SHAPE_TWIN_BASE;
+        } else {
+            ids[0] |= TP2_SHAPE_TWIN_BASE;
             ids[3] = (int32_t)t->row;
-            if (t->role == TIE_CAP)
-                rec->row[1][3] = -fabs(rec->row[1][3]); /* the record's flag */
             if (all_rows)
                 memcpy(all_rows[t->row], t->plane, sizeof t->plane);
         }
@@ -436,7 +447,7 @@ static int by_slot(const void *x, const void *y)
 }
 
 /* Finds the coincident surfaces (ties.h) and what each becomes
- * (lay->ties); a cap's twin rows are added to the extra buffer's end.
+ * (lay->ties); a triangle's twin rows are added to the extra buffer's end.
  * Nothing to do without a plane, a polyhedron, a cylinder, a cone or a
  * triangle. A triangle is compared only with the other kinds' surfaces:
  * two meshes lying in one plane keep their own distances. */
@@ -500,16 +511,17 @@ static int find_ties(const struct scene *s, struct layout *lay)
                 e++;
             }
         qsort(lay->ties, m, sizeof *lay->ties, by_slot);
-        /* One twin row per cap or triangle: a cylinder standing on one
-         * face and touching another with its top keeps its base's (the
-         * shader reads one row: a cylinder's test costs less). */
+        /* One twin per cap or triangle: a cylinder standing on one face
+         * and touching another with its top keeps its base's (its record
+         * holds one plane: a cylinder's test costs less); a triangle's
+         * plane goes to a twin row of its own. */
         size_t kept = 0;
         for (e = 0; e < m; e++) {
             struct tie_entry t = lay->ties[e];
             if (t.role >= TIE_CAP && kept > 0 && lay->ties[kept - 1].slot == t.slot &&
                 lay->ties[kept - 1].role >= TIE_CAP)
                 continue;
-            if (t.role >= TIE_CAP)
+            if (t.role == TIE_TRIANGLE)
                 t.row = lay->nextra++;
             lay->ties[kept++] = t;
             lay->tie_first[t.slot + 1]++;

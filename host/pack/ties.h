@@ -36,7 +36,8 @@ enum tie_role {
     TIE_FIXED,  /* a box face: the slab's arithmetic, an axis plane's */
     TIE_PLANE,  /* a plane object's row: replaced by the canonical plane */
     TIE_FACE,   /* a polyhedron's face row: replaced the same way */
-    TIE_CAP,    /* a cylinder's or cone's cap: met through a twin row */
+    TIE_CAP,    /* a cylinder's or cone's cap: its axis becomes the plane's
+                   normal, its record holds the plane's place along it */
     TIE_TRIANGLE, /* a triangle: its inside by its corners, its distance
                      through a twin row */
 };
