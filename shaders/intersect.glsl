@@ -101,25 +101,34 @@ rvec3 safe_inverse(rvec3 d)
     return real(1.0) / mix(d, rvec3(tiny), lessThan(abs(d), rvec3(tiny)));
 }
 
+// Object i's place in the scene file, or without a BVH a key in the
+// same order (tp2_shared.h, TP2_SHAPE_ORDER_SHIFT).
+uint file_key(int i)
+{
+    return uint(object_ids(i).x) >> TP2_SHAPE_ORDER_SHIFT;
+}
+
 // Whether object a is listed before object b in the scene file (SPEC 4,
 // Ties), the layout deciding within one object (a mesh's triangles) and
 // beyond TP2_ORDER_MAX. Asked only of an exact tie.
 bool listed_before(int a, int b)
 {
-    uint ka = uint(object_ids(a).x) >> TP2_SHAPE_ORDER_SHIFT;
-    uint kb = uint(object_ids(b).x) >> TP2_SHAPE_ORDER_SHIFT;
+    uint ka = file_key(a);
+    uint kb = file_key(b);
     return ka < kb || (ka == kb && a < b);
 }
 
 // Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
 // an any-hit ray has found one. An exact tie goes to the object listed
 // first in the scene file, whatever order the BVH or a plain loop tests
-// them in (it differs where mixed's float pass grows boxes). by_slot: the
-// caller knows that h.object, if any, is in slots in scene order with i
-// (trace_plain), so the slots decide a tie; a constant, as lavapipe
-// reads listed_before's records for every object tested, tie or not.
+// them in (it differs where mixed's float pass grows boxes). by_slot
+// (trace_plain, without a BVH, where every slot is in scene order): 1 for
+// a bounded object i, whose earlier bounded slots are listed before it;
+// 2 for an unbounded one, whose key is compared with a bounded hit's
+// slot; else 0. A constant, as lavapipe reads listed_before's records for
+// every object tested, tie or not.
 bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
-                 vec2 doubt, bool by_slot)
+                 vec2 doubt, int by_slot)
 {
     int part;
     float edge = NO_EDGE;
@@ -128,7 +137,15 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
     bool grazed = SIGNATURES && edge < NO_EDGE;
     if (grazed && edge <= float(h.t) + most_reach())
         h.edge = min(h.edge, edge);
-    bool first_listed = by_slot ? i < h.object : h.object >= 0 && listed_before(i, h.object);
+    bool first_listed;
+    if (by_slot == 1)
+        first_listed = i < h.object;
+    else if (by_slot == 2)
+        first_listed = h.object < frame.geometry.x
+                           ? int(file_key(i)) < min(2 * h.object + 1, TP2_ORDER_MAX)
+                           : i < h.object;
+    else
+        first_listed = h.object >= 0 && listed_before(i, h.object);
     bool nearer = (t < h.t || (t == h.t && first_listed)) && !(any_hit && grazed);
     if (nearer) {
         h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
@@ -147,8 +164,9 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
 // `first` of the first loop's objects is tested first (k = -1); another
 // in its turn only (the hint is a guess: any occluder answers the same).
 // Without a BVH the bounded objects' slots are in scene order
-// (host/pack/scene_pack.c, order_bounded), and the unbounded ones' too,
-// so a loop over the bounded ones alone decides ties by slot.
+// (host/pack/scene_pack.c, order_bounded), and the unbounded ones' too:
+// a loop over the bounded ones alone decides ties by slot, and the
+// unbounded loop by one key read per object (test_object).
 Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
 {
     Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
@@ -160,10 +178,10 @@ Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
     int k = OCCLUDER_HINT && HAS_AREA && first >= 0 && first < split ? -1 : 0;
     for (; k < split && !done; ++k)
         done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt,
-                           bounded_only);
+                           bounded_only ? 1 : 0);
     if (two_kinds)
         for (int i = split; i < total && !done; ++i)
-            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt, false);
+            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt, 2);
     return h;
 }
 
@@ -219,7 +237,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         int link = 0;       // a child to enter after this step, if `enter`
         bool enter = false;
         if (i < end) {
-            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt, false))
+            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt, 0))
                 break;
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out

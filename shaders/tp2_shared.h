@@ -188,15 +188,21 @@
 #define TP2_SHAPE_NEAR_TWIN 0x20
 /* A cylinder's or cone's base cap (or its top cap: one of them) lies in
  * another object's face, or a triangle does (BASE): it is met by plane_t's
- * arithmetic on that face's plane, kept in extra row ids.w, so that both
- * give one distance (host/ties.h). A cap's record says so by a negative
- * length; the code is compiled only under TP2_SPEC_TWINS. */
+ * arithmetic on that face's plane, so that both give one distance
+ * (host/ties.h): a triangle's plane is kept in extra row ids.w; a cap's
+ * axis is the plane's normal and its record's c.y the plane's place
+ * along it, and a negative length says so. The code is compiled only
+ * under TP2_SPEC_TWINS. */
 #define TP2_SHAPE_TWIN_BASE 0x40
 #define TP2_SHAPE_TWIN_TOP 0x80
 /* Above the flags: the object's place in the scene file (SPEC 4, Ties:
  * of two objects hit at one distance, the one listed first is the hit),
  * up to TP2_ORDER_MAX (later ones share it, and the layout decides
- * between them). A mesh's triangles share their mesh's. */
+ * between them). A mesh's triangles share their mesh's. Without a BVH,
+ * where every slot is in scene order, it is a key in the same order
+ * that the slots give: 2 slot + 1 for a bounded primitive, 2 b for an
+ * unbounded one listed after b bounded primitives (intersect.glsl,
+ * trace_plain, compares an unbounded object's with a bounded hit's slot). */
 #define TP2_SHAPE_ORDER_SHIFT 8
 #define TP2_ORDER_MAX 0xffffff
 

@@ -76,6 +76,7 @@ struct layout {
     struct tie_entry *ties;
     size_t *tie_first;
     bool twins_compiled; /* TP2_SPEC_TWINS */
+    bool slot_keys;      /* no BVH: file order as slot_key's keys */
 };
 
 /* The parser has rejected eye == center and up parallel to the view. */
@@ -199,6 +200,25 @@ static void prefetch_slot(const struct scene *s, const struct layout *lay, size_
         __builtin_prefetch(scene_object_reals(s, &s->objects[lay->slots[near].object]));
 }
 
+/* Slot's file-order key without a BVH (tp2_shared.h, TP2_SHAPE_ORDER_SHIFT):
+ * 2 slot + 1 for a bounded primitive; 2 b for an unbounded one, b the
+ * bounded primitives of objects listed before it (the bounded slots are
+ * in scene order then: order_bounded). */
+static size_t slot_key(const struct layout *lay, size_t slot)
+{
+    if (slot < lay->nbounded)
+        return 2 * slot + 1;
+    size_t object = lay->slots[slot].object, lo = 0, hi = lay->nbounded;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (lay->slots[mid].object < object)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return 2 * lo;
+}
+
 /* Primitive slot's record and its extra rows, whose first is *extra_at. */
 static void object_record(const struct scene *s, const struct layout *lay, size_t slot,
                           struct shape_record *rec, double (*extra)[4], size_t *extra_at,
@@ -209,7 +229,8 @@ static void object_record(const struct scene *s, const struct layout *lay, size_
     const struct shape_kind *kind = &shape_kinds[o->kind];
     const double *p = scene_object_reals(s, o);
     memset(rec, 0, sizeof *rec);
-    uint32_t order = ref->object < TP2_ORDER_MAX ? (uint32_t)ref->object : TP2_ORDER_MAX;
+    size_t key = lay->slot_keys ? slot_key(lay, slot) : ref->object;
+    uint32_t order = key < TP2_ORDER_MAX ? (uint32_t)key : TP2_ORDER_MAX;
     ids[0] = (int32_t)((uint32_t)kind->gpu_kind | order << TP2_SHAPE_ORDER_SHIFT);
     ids[1] = (int32_t)o->pigment;
     ids[2] = (int32_t)o->finish;
@@ -880,6 +901,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
+    lay.slot_keys = !out->features.bvh;
     if (rc == 0)
         rc = early_twins(s, &lay.twins_compiled);
     out->features.twins = lay.twins_compiled;
