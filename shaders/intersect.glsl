@@ -17,6 +17,7 @@ struct Hit {
     float edge;  // and where it passed a flat solid's or a triangle's edge
                  // within its doubt (shapes.glsl: edge_graze, exit_graze,
                  // triangle_graze), if nearer than the hit
+    uint key;    // file_key(object) where test_object needs it (by_slot 0)
 };
 
 // The surface a ray starts on, which rounding must not let it hit again
@@ -108,15 +109,6 @@ uint file_key(int i)
     return uint(object_ids(i).x) >> TP2_SHAPE_ORDER_SHIFT;
 }
 
-// Whether object a is listed before object b in the scene file (SPEC 4,
-// Ties), the layout deciding within one object (a mesh's triangles) and
-// beyond TP2_ORDER_MAX. Asked only of an exact tie.
-bool listed_before(int a, int b)
-{
-    uint ka = file_key(a);
-    uint kb = file_key(b);
-    return ka < kb || (ka == kb && a < b);
-}
 
 // Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
 // an any-hit ray has found one. An exact tie goes to the object listed
@@ -125,8 +117,10 @@ bool listed_before(int a, int b)
 // (trace_plain, without a BVH, where every slot is in scene order): 1 for
 // a bounded object i, whose earlier bounded slots are listed before it;
 // 2 for an unbounded one, whose key is compared with a bounded hit's
-// slot; else 0. A constant, as lavapipe reads listed_before's records for
-// every object tested, tie or not.
+// slot; else 0, and the keys decide, the layout within one object (a
+// mesh's triangles) and beyond TP2_ORDER_MAX: i's key is read where its
+// kind is (shape_of), the hit's is kept in h.key. A constant, as
+// lavapipe reads a record for every object tested, tie or not.
 bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
                  vec2 doubt, int by_slot)
 {
@@ -137,7 +131,8 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
     bool grazed = SIGNATURES && edge < NO_EDGE;
     if (grazed && edge <= float(h.t) + most_reach())
         h.edge = min(h.edge, edge);
-    bool first_listed;
+    uint key = by_slot == 0 ? file_key(i) : 0u;
+    bool first_listed; // of i and h.object, if at one distance
     if (by_slot == 1)
         first_listed = i < h.object;
     else if (by_slot == 2)
@@ -145,10 +140,10 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
                            ? int(file_key(i)) < min(2 * h.object + 1, TP2_ORDER_MAX)
                            : i < h.object;
     else
-        first_listed = h.object >= 0 && listed_before(i, h.object);
+        first_listed = h.object >= 0 && (key < h.key || (key == h.key && i < h.object));
     bool nearer = (t < h.t || (t == h.t && first_listed)) && !(any_hit && grazed);
     if (nearer) {
-        h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge);
+        h = Hit(t, i, part, h.t, h.object, h.part, h.graze, any_hit ? NO_EDGE : h.edge, key);
     } else if (SIGNATURES && t < h.next) {
         h.next = t;
         h.next_object = i;
@@ -169,7 +164,7 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
 // unbounded loop by one key read per object (test_object).
 Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
 {
-    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE, 0u);
     const bool two_kinds = UNBOUNDED_SHAPE >= 0 && UNBOUNDED_SHAPE != BOUNDED_SHAPE;
     const bool bounded_only = two_kinds || UNBOUNDED_SHAPE < 0;
     int total = frame.geometry.x + frame.geometry.y;
@@ -217,7 +212,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
 {
     if (!USE_BVH && BOUNDED_SHAPE >= 0)
         return trace_plain(o, d, start, tmax, any_hit, first, doubt);
-    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE);
+    Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE, 0u);
     int bounded = frame.geometry.x;
     int total = bounded + frame.geometry.y;
     BoxRay box = box_ray(o, USE_BVH ? safe_inverse(d) : d);
