@@ -118,7 +118,12 @@ layout(constant_id = TP2_SPEC_SIGNATURES) const bool SIGNATURES = false;
 layout(constant_id = TP2_SPEC_PIXEL_LIST) const bool PIXEL_LIST = false;
 layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
-layout(constant_id = TP2_SPEC_TWINS) const bool TWINS = true;
+layout(constant_id = TP2_SPEC_TWINS) const int TWIN_KINDS = TP2_TWIN_CAPS | TP2_TWIN_TRIANGLES;
+
+// Whether some cap, some triangle lies in another object's face
+// (shapes.glsl, hit_tapered, hit_triangle): else their code compiles out.
+const bool TWIN_CAPS = (TWIN_KINDS & TP2_TWIN_CAPS) != 0;
+const bool TWIN_TRIANGLES = (TWIN_KINDS & TP2_TWIN_TRIANGLES) != 0;
 
 // Whether the scene uses pigment kind k / shape kind k (TP2_PIGMENT_*,
 // TP2_SHAPE_*: kinds.h): code for kinds it does not use is compiled out.

@@ -370,10 +370,10 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    bool twin = TWINS && axis.w < 0.0;
+    bool twin = TWIN_CAPS && axis.w < 0.0;
     real h = abs(axis.w);
     real k = (r1 - base.w) / h;
-    real cap_num = TWINS ? object_row(i, 2).y - rdot(axis.xyz, o) : 0.0;
+    real cap_num = TWIN_CAPS ? object_row(i, 2).y - rdot(axis.xyz, o) : 0.0;
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
@@ -388,7 +388,7 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     real t_lo = (cap_part == 1 ? cap_num : 0.0 - oa) / da;
     real t_hi = (cap_part == 2 ? cap_num : h - oa) / da;
     real cap_t = cap_part == 1 ? t_lo : t_hi; // from the ray's own origin
-    if (TWINS) {
+    if (TWIN_CAPS) {
         t_lo = cap_part == 1 ? t_lo - t0 : t_lo;
         t_hi = cap_part == 2 ? t_hi - t0 : t_hi;
     }
@@ -415,7 +415,7 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     }
     s.t_in += t0;
     s.t_out += t0;
-    if (TWINS) {
+    if (TWIN_CAPS) {
         s.t_in = s.part_in == cap_part && s.t_in > -NO_HIT ? cap_t : s.t_in;
         s.t_out = s.part_out == cap_part && s.t_out < NO_HIT ? cap_t : s.t_out;
     }
@@ -720,8 +720,8 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge
     real t = tw / det;
     // In another object's face (host/ties.h): that face's distance, so
     // that the two tie exactly; asked only of a ray inside the corners.
-    ivec4 ids = TWINS ? object_ids(i) : ivec4(0);
-    if (TWINS && (ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
+    ivec4 ids = TWIN_TRIANGLES ? object_ids(i) : ivec4(0);
+    if (TWIN_TRIANGLES && (ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
         rvec4 twin = extra_row(ids.w);
         real denom = rdot(twin.xyz, d);
         t = denom != 0.0 ? plane_cross(twin, o, denom) : t;

@@ -82,7 +82,7 @@
 #define TP2_SPEC_PIXEL_LIST 15 /* bool: trace the listed pixels, not the whole band */
 #define TP2_SPEC_OCCLUDER_HINT 16 /* bool: an arealight sample's shadow ray tests the last one's occluder first */
 #define TP2_SPEC_SLABS 17    /* int: slabs a dispatch's rows of workgroups are cut into (render_bands.c) */
-#define TP2_SPEC_TWINS 18    /* bool: some cap or triangle is met through a twin row (host/ties.h) */
+#define TP2_SPEC_TWINS 18    /* int: TP2_TWIN_*, which kinds have twins (host/pack/ties.h) */
 #define TP2_SPEC_COUNT 19
 
 /* A pixel's signature word (shaders/signature.glsl, host/render/retrace.c): a
@@ -191,8 +191,11 @@
  * arithmetic on that face's plane, so that both give one distance
  * (host/ties.h): a triangle's plane is kept in extra row ids.w; a cap's
  * axis is the plane's normal and its record's c.y the plane's place
- * along it, and a negative length says so. The code is compiled only
- * under TP2_SPEC_TWINS. */
+ * along it, and a negative length says so. The code for each is
+ * compiled only where TP2_SPEC_TWINS has its bit (TP2_TWIN_CAPS,
+ * TP2_TWIN_TRIANGLES). */
+#define TP2_TWIN_CAPS 1
+#define TP2_TWIN_TRIANGLES 2
 #define TP2_SHAPE_TWIN_BASE 0x40
 #define TP2_SHAPE_TWIN_TOP 0x80
 /* Above the flags: the object's place in the scene file (SPEC 4, Ties:

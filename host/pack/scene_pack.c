@@ -75,7 +75,7 @@ struct layout {
      * tie_first[slot + 1]) are slot's; NULL where there are none. */
     struct tie_entry *ties;
     size_t *tie_first;
-    bool twins_compiled; /* TP2_SPEC_TWINS */
+    int twins_compiled;  /* TP2_SPEC_TWINS: TP2_TWIN_CAPS, TP2_TWIN_TRIANGLES */
     bool slot_keys;      /* no BVH: file order as slot_key's keys */
 };
 
@@ -413,14 +413,16 @@ static int slot_surfaces(const struct scene *s, const struct layout *lay, size_t
                          list, n, cap);
 }
 
-/* Whether some cap or triangle may lie in another object's surface, found
- * in the scene's own coordinates before the layout, with room for the
- * move to its origin (*found): the shaders' code for twin caps and
- * triangles is compiled only then (TP2_SPEC_TWINS), which costs a
- * cylinder's test a third more on lavapipe. -1 when out of memory. */
-static int early_twins(const struct scene *s, bool *found)
+/* Which of caps and triangles may lie in another object's surface
+ * (*found: TP2_TWIN_CAPS, TP2_TWIN_TRIANGLES), found in the scene's own
+ * coordinates before the layout, with room for the move to its origin:
+ * the shaders' code for twin caps, and apart from it for twin triangles,
+ * is compiled only then (TP2_SPEC_TWINS), as lavapipe runs it for every
+ * object of the kinds tested where a kind is not known (a mesh's
+ * triangles run a cylinder's test). -1 when out of memory. */
+static int early_twins(const struct scene *s, int *found)
 {
-    *found = false;
+    *found = 0;
     double (*rows)[4] = malloc(TP2_MAX_FACES * sizeof *rows);
     struct tie_surface *list = NULL;
     size_t n = 0, cap = 0;
@@ -439,18 +441,20 @@ static int early_twins(const struct scene *s, bool *found)
     scale *= 16; /* the move changes d by its rounding */
     if (rc == 0 && curved && n > 0) {
         ties_sort(list, n);
-        for (size_t i = 0; i < n && !*found; i++)
-            *found = list[i].role == TIE_CAP &&
-                     ties_near(list, n, list[i].plane, scale, list[i].object);
-        for (size_t i = 0; rc == 0 && i < s->nobjects && !*found; i++) {
+        for (size_t i = 0; i < n && !(*found & TP2_TWIN_CAPS); i++)
+            if (list[i].role == TIE_CAP &&
+                ties_near(list, n, list[i].plane, scale, list[i].object))
+                *found |= TP2_TWIN_CAPS;
+        for (size_t i = 0; rc == 0 && i < s->nobjects && !(*found & TP2_TWIN_TRIANGLES); i++) {
             const struct scene_object *o = &s->objects[i];
             if (shape_kinds[o->kind].gpu_kind != TP2_SHAPE_TRIANGLE)
                 continue;
             size_t prims = shape_kinds[o->kind].primitives(scene_object_reals(s, o), o->count);
-            for (size_t k = 0; rc == 0 && k < prims && !*found; k++) {
+            for (size_t k = 0; rc == 0 && k < prims && !(*found & TP2_TWIN_TRIANGLES); k++) {
                 size_t before = n;
                 rc = prim_surfaces(s, i, k, 0, NULL, rows, &list, &n, &cap);
-                *found = rc == 0 && ties_near(list, before, list[before].plane, scale, i);
+                if (rc == 0 && ties_near(list, before, list[before].plane, scale, i))
+                    *found |= TP2_TWIN_TRIANGLES;
                 n = before;
             }
         }
@@ -508,7 +512,9 @@ static int find_ties(const struct scene *s, struct layout *lay)
     if (rc == 0)
         rc = ties_group(list, n, lay->scale, canonical, twin);
     for (size_t i = 0; rc == 0 && i < n; i++)
-        twin[i] &= lay->twins_compiled || list[i].role < TIE_CAP;
+        twin[i] &= list[i].role == TIE_CAP        ? (lay->twins_compiled & TP2_TWIN_CAPS) != 0
+                   : list[i].role == TIE_TRIANGLE ? (lay->twins_compiled & TP2_TWIN_TRIANGLES) != 0
+                                                  : true;
     size_t m = 0;
     for (size_t i = 0; rc == 0 && i < n; i++)
         if (twin[i] && list[i].role != TIE_FIXED &&

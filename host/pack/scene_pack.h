@@ -21,7 +21,8 @@ struct scene_features {
     int unbounded_shape; /* ... of the unbounded ones, else -1 */
     bool bvh; /* enough bounded objects that the BVH beats a plain loop */
     int samples;
-    bool twins; /* some cap or triangle lies in another object's face (ties.h) */
+    int twins; /* TP2_TWIN_CAPS, TP2_TWIN_TRIANGLES: some cap, some triangle
+                  lies in another object's face (ties.h) */
 };
 
 struct pack_options {
