@@ -8,8 +8,9 @@
  * and each group gets one canonical plane: a box face's own (its slab
  * arithmetic is plane_t's on an axis plane), else the first plane
  * object's, else the first face's in file order. Planes and polyhedron
- * faces then carry that plane (turned to their own side), caps meet rays
- * through it (TP2_SHAPE_TWIN_*), and shaders/shapes.glsl computes every
+ * faces then carry that plane (turned to their own side), caps take its
+ * normal as their axis and keep its place along it, triangles read it
+ * from a twin row (TP2_SHAPE_TWIN_*), and shaders/shapes.glsl computes every
  * member's distance by plane_t's one formula on the same numbers: equal
  * in any precision, and the file order decides.
  *
