@@ -785,11 +785,14 @@ static void place_origin(const struct scene *s, struct layout *lay)
         bvh_move(&lay->bvh, lay->origin);
 }
 
-/* Builds the BVH over the bounded primitives and, if rays walk it
- * (use), puts their slots in its order. Else they stay in scene order,
- * so that the shader's plain loop decides a tie between two of them by
- * their slots (shaders/intersect.glsl, trace_plain), and the tree, its
- * root box aside, is not read. */
+/* Builds the BVH over the bounded primitives and puts their slots in its
+ * order. If rays do not walk it (!use), the slots are then sorted by
+ * object, stably: in scene order, so that the shader's plain loop decides
+ * a tie between two objects by their slots (shaders/intersect.glsl,
+ * trace_plain), and one object's primitives (a mesh's triangles) in the
+ * BVH's order still, so that a tie between two of them goes the same way
+ * with or without the BVH. The tree, its root box aside, is then not
+ * read. */
 static int order_bounded(const struct scene *s, struct layout *lay,
                          const struct prim_ref *bounded, bool use, double *bvh_time)
 {
@@ -799,8 +802,23 @@ static int order_bounded(const struct scene *s, struct layout *lay,
     *bvh_time = clock_seconds() - t0;
     if (built != 0)
         return -1;
-    for (size_t slot = 0; slot < lay->nbounded; slot++)
-        lay->slots[slot] = bounded[use ? lay->bvh.order[slot] : slot];
+    if (use || lay->nbounded == 0) {
+        for (size_t slot = 0; slot < lay->nbounded; slot++)
+            lay->slots[slot] = bounded[lay->bvh.order[slot]];
+        return 0;
+    }
+    size_t *first = calloc(s->nobjects + 1, sizeof *first); /* counting sort */
+    if (!first)
+        return -1;
+    for (size_t b = 0; b < lay->nbounded; b++)
+        first[bounded[b].object + 1]++;
+    for (size_t i = 0; i < s->nobjects; i++)
+        first[i + 1] += first[i];
+    for (size_t slot = 0; slot < lay->nbounded; slot++) {
+        struct prim_ref ref = bounded[lay->bvh.order[slot]];
+        lay->slots[first[ref.object]++] = ref;
+    }
+    free(first);
     return 0;
 }
 
