@@ -158,8 +158,9 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
 // kinds for each object it tests (one loop where both are one kind). A
 // `first` of the first loop's objects is tested first (k = -1); another
 // in its turn only (the hint is a guess: any occluder answers the same).
-// Without a BVH the bounded objects' slots are in scene order
-// (host/pack/scene_pack.c, order_bounded), and the unbounded ones' too:
+// Without a BVH, but not under mixed, the bounded objects' slots are in scene
+// order (SCENE_SLOTS: host/pack/scene_pack.c, order_bounded), and the
+// unbounded ones' too:
 // a loop over the bounded ones alone decides ties by slot, and the
 // unbounded loop by one key read per object (test_object).
 Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
@@ -173,10 +174,11 @@ Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
     int k = OCCLUDER_HINT && HAS_AREA && first >= 0 && first < split ? -1 : 0;
     for (; k < split && !done; ++k)
         done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt,
-                           bounded_only ? 1 : 0);
+                           SCENE_SLOTS && bounded_only ? 1 : 0);
     if (two_kinds)
         for (int i = split; i < total && !done; ++i)
-            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt, 2);
+            done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt,
+                               SCENE_SLOTS ? 2 : 0);
     return h;
 }
 

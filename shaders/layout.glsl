@@ -118,6 +118,7 @@ layout(constant_id = TP2_SPEC_SIGNATURES) const bool SIGNATURES = false;
 layout(constant_id = TP2_SPEC_PIXEL_LIST) const bool PIXEL_LIST = false;
 layout(constant_id = TP2_SPEC_OCCLUDER_HINT) const bool OCCLUDER_HINT = true;
 layout(constant_id = TP2_SPEC_SLABS) const int SLABS = 1;
+layout(constant_id = TP2_SPEC_SCENE_SLOTS) const bool SCENE_SLOTS = false;
 layout(constant_id = TP2_SPEC_TWINS) const int TWIN_KINDS = TP2_TWIN_CAPS | TP2_TWIN_TRIANGLES;
 
 // Whether some cap, some triangle lies in another object's face

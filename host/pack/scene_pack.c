@@ -925,7 +925,11 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
         out->features.bounded_shape = -1;
     int bvh_min = opt->bvh_min ? opt->bvh_min : TP2_BVH_MIN_OBJECTS;
     out->features.bvh = lay.nbounded >= (size_t)bvh_min;
-    lay.slot_keys = !out->features.bvh;
+    /* Not under mixed (a twin): its float pass's edge marks depend on
+     * the order objects are tested in, which the BVH's keeps as a loop's
+     * (check_effects.py, grown_boxes_mark_as_loop). */
+    lay.slot_keys = !out->features.bvh && !twin;
+    out->features.scene_slots = lay.slot_keys;
     if (rc == 0)
         rc = early_twins(s, &lay.twins_compiled);
     out->features.twins = lay.twins_compiled;
@@ -934,7 +938,7 @@ int scene_pack(const struct scene *s, const struct pack_options *opt,
     if (rc == 0 && opt->features_known)
         opt->features_known(&out->features, opt->user);
     if (rc == 0)
-        rc = order_bounded(s, &lay, bounded, out->features.bvh, &out->bvh_time);
+        rc = order_bounded(s, &lay, bounded, !lay.slot_keys, &out->bvh_time);
     if (rc == 0) {
         place_origin(s, &lay);
         lay.scale = layout_scale(s, &lay);

@@ -23,6 +23,7 @@ struct scene_features {
     int samples;
     int twins; /* TP2_TWIN_CAPS, TP2_TWIN_TRIANGLES: some cap, some triangle
                   lies in another object's face (ties.h) */
+    bool scene_slots; /* no BVH, and the bounded slots in scene order */
 };
 
 struct pack_options {
