@@ -214,13 +214,14 @@ static void texmap_json(FILE *out, const struct scene *s, const struct scene_pig
     json_numbers(out, "t", pg->t, 4);
 }
 
-/* Each kind's functions, in struct pigment_kind's order after the fields
- * kinds.h gives: KEYWORD_OPS for each row of TP2_PIGMENTS. */
-#define solid_OPS solid_read, solid_pack, unmoved, solid_json, NULL
-#define checker_OPS checker_read, checker_pack, checker_move, checker_json, NULL
-#define gradient_OPS gradient_read, gradient_pack, gradient_move, gradient_json, gradient_slope
+/* Each kind's functions and alias, in struct pigment_kind's order after
+ * the fields kinds.h gives: KEYWORD_OPS for each row of TP2_PIGMENTS. */
+#define solid_OPS solid_read, solid_pack, unmoved, solid_json, NULL, NULL
+#define checker_OPS checker_read, checker_pack, checker_move, checker_json, NULL, NULL
+#define gradient_OPS gradient_read, gradient_pack, gradient_move, gradient_json, gradient_slope, \
+                     NULL
 #define texmap_OPS texmap_read, texmap_pack, texmap_move, texmap_json, texmap_slope, \
-                   .alias = "textmap" /* the 2022 handout's spelling */
+                   "textmap" /* the 2022 handout's spelling */
 
 #define TP2_PIGMENT_ROW_(NAME, keyword, id) [PIGMENT_##NAME] = {#keyword, id, keyword##_OPS},
 const struct pigment_kind pigment_kinds[PIGMENT_COUNT] = {TP2_PIGMENTS(TP2_PIGMENT_ROW_)};
