@@ -125,7 +125,11 @@ static void relaid(struct soft *s, struct fn *f, uint32_t v, uint32_t t, uint32_
                    uint32_t result)
 {
     uint32_t n = components(s, t), parts[MAX_PARTS];
-    for (uint32_t k = 0; k < n && k < MAX_PARTS; k++) {
+    if (n > MAX_PARTS) {
+        s->failed = true;
+        return;
+    }
+    for (uint32_t k = 0; k < n; k++) {
         uint32_t o[4] = {s->uvec2, parts[k] = s->next++, v, k};
         emit(s, f, SpvOpCompositeExtract, o, 4);
     }
@@ -263,14 +267,14 @@ static void convert(struct soft *s, struct fn *f, const uint32_t *w)
  * array cannot be selected, so each component is its own select. */
 static void select_wide(struct soft *s, struct fn *f, const uint32_t *w)
 {
-    if (w[1] != s->f64 && !is_dvec(s, w[1])) {
+    uint32_t n = components(s, w[1]), parts[MAX_PARTS];
+    if ((w[0] >> 16) != 6 || (w[1] != s->f64 && !is_dvec(s, w[1])) || n > MAX_PARTS) {
         s->failed = true;
         return;
     }
     uint32_t bool_pair[2] = {s->bool_type, 2};
-    uint32_t bvec2 = soft_type(s, SpvOpTypeVector, bool_pair, 2);
-    uint32_t n = components(s, w[1]), parts[MAX_PARTS], cond_type = s->type_of[w[3]];
-    for (uint32_t k = 0; k < n && k < MAX_PARTS; k++) {
+    uint32_t bvec2 = soft_type(s, SpvOpTypeVector, bool_pair, 2), cond_type = s->type_of[w[3]];
+    for (uint32_t k = 0; k < n; k++) {
         uint32_t c = part(s, f, w[3], cond_type, k);
         uint32_t pair[4] = {bvec2, s->next++, c, c};
         emit(s, f, SpvOpCompositeConstruct, pair, 4);
@@ -285,8 +289,12 @@ static void select_wide(struct soft *s, struct fn *f, const uint32_t *w)
 /* OpVectorShuffle of dvecs: the components picked out and put together. */
 static void shuffle(struct soft *s, struct fn *f, const uint32_t *w, uint32_t n)
 {
+    if (n < 5 || n - 5 > MAX_PARTS) {
+        s->failed = true;
+        return;
+    }
     uint32_t first = components(s, s->type_of[w[3]]), parts[MAX_PARTS];
-    for (uint32_t k = 0; k + 5 < n && k < MAX_PARTS; k++) {
+    for (uint32_t k = 0; k + 5 < n; k++) {
         uint32_t c = w[5 + k] == 0xffffffffu ? 0 : w[5 + k]; /* undefined: any */
         uint32_t from = c < first ? w[3] : w[4];
         parts[k] = part(s, f, val(s, from), s->type_of[from], c < first ? c : c - first);
@@ -390,8 +398,8 @@ static void lower_ext(struct soft *s, struct fn *f, const uint32_t *w, uint32_t 
 static void lower(struct soft *s, struct fn *f, const uint32_t *w, uint32_t n)
 {
     uint32_t op = w[0] & 0xffffu, from = operands_at(op), o[64];
-    if (n > 64 || !touches_wide(s, w, n, from)) {
-        s->failed |= n > 64;
+    if (n > 64 || n < from || !touches_wide(s, w, n, from)) {
+        s->failed |= n > 64 || n < from;
         emit(s, f, op, &w[1], n - 1);
         return;
     }

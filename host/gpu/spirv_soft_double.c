@@ -10,31 +10,13 @@
 #include "spirv_soft.h"
 #include "spirv_words.h"
 
-#define SPV_ENABLE_UTILITY_CODE
 #include <spirv/unified1/spirv.h>
-
-/* SpvHasResultAndType's external definition is spirv_specialize.c's. */
 
 static const char *const library_names[SD_COUNT] = {
     "sd_add", "sd_sub", "sd_mul", "sd_div", "sd_neg", "sd_abs", "sd_sqrt",
     "sd_floor", "sd_fract", "sd_min", "sd_max", "sd_lt", "sd_le", "sd_gt",
     "sd_ge", "sd_eq", "sd_une", "sd_from_float", "sd_to_float", "sd_from_int",
     "sd_to_int"};
-
-uint32_t soft_result_id(const uint32_t *code, size_t at)
-{
-    bool has_result = false, has_type = false;
-    SpvHasResultAndType((SpvOp)spirv_op(code, at), &has_result, &has_type);
-    uint32_t word = has_type ? 2 : 1;
-    return has_result && spirv_count(code, at) > word ? code[at + word] : 0;
-}
-
-uint32_t soft_result_type(const uint32_t *code, size_t at)
-{
-    bool has_result = false, has_type = false;
-    SpvHasResultAndType((SpvOp)spirv_op(code, at), &has_result, &has_type);
-    return has_type && spirv_count(code, at) > 2 ? code[at + 1] : 0;
-}
 
 /* Instructions of the sections before the types (layout, debug,
  * annotations). */
@@ -69,6 +51,33 @@ static void read_name(struct soft *s, const uint32_t *w, uint32_t n)
             s->lib[i].id = w[1];
 }
 
+/* Whether an instruction the pass reads by word has its words: the
+ * declarations it looks into (malformed modules are refused, not read
+ * past). */
+static bool sized(uint32_t op, uint32_t n)
+{
+    switch (op) {
+    case SpvOpTypeVector:
+    case SpvOpTypeMatrix:
+    case SpvOpTypeArray:
+    case SpvOpTypePointer:
+    case SpvOpTypeInt:
+        return n == 4;
+    case SpvOpTypeRuntimeArray:
+    case SpvOpTypeFloat:
+        return n == 3 || (op == SpvOpTypeFloat && n == 4);
+    case SpvOpTypeFunction:
+    case SpvOpTypeImage:
+    case SpvOpTypeSampledImage:
+    case SpvOpName:
+        return n >= 3;
+    case SpvOpFunction:
+        return n == 5;
+    default:
+        return true;
+    }
+}
+
 /* Ids, types, sections, names, layouts. False when malformed. */
 static bool read_module(struct soft *s)
 {
@@ -77,7 +86,7 @@ static bool read_module(struct soft *s)
         const uint32_t *w = &c[at];
         uint32_t op = spirv_op(c, at), n = spirv_count(c, at);
         uint32_t id = soft_result_id(c, at), type = soft_result_type(c, at);
-        if (id >= s->bound || type >= s->bound)
+        if (id >= s->bound || type >= s->bound || !sized(op, n))
             return false;
         s->def[id] = at;
         s->type_of[id] = type;

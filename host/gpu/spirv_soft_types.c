@@ -9,7 +9,26 @@
 #include <string.h>
 
 #include "spirv_words.h"
+#define SPV_ENABLE_UTILITY_CODE
 #include <spirv/unified1/spirv.h>
+
+/* SpvHasResultAndType's external definition is spirv_specialize.c's. */
+
+uint32_t soft_result_id(const uint32_t *code, size_t at)
+{
+    bool has_result = false, has_type = false;
+    SpvHasResultAndType((SpvOp)spirv_op(code, at), &has_result, &has_type);
+    uint32_t word = has_type ? 2 : 1;
+    return has_result && spirv_count(code, at) > word ? code[at + word] : 0;
+}
+
+uint32_t soft_result_type(const uint32_t *code, size_t at)
+{
+    bool has_result = false, has_type = false;
+    SpvHasResultAndType((SpvOp)spirv_op(code, at), &has_result, &has_type);
+    return has_type && spirv_count(code, at) > 2 ? code[at + 1] : 0;
+}
+
 
 void words_put(struct words *b, uint32_t word)
 {
