@@ -38,6 +38,9 @@ set(TP2_PACK_SOURCES
 set(TP2_GPU_SOURCES
   ${TP2_HOST}/gpu/pipeline_cache.c
   ${TP2_HOST}/gpu/spirv_exact.c
+  ${TP2_HOST}/gpu/spirv_soft_body.c
+  ${TP2_HOST}/gpu/spirv_soft_double.c
+  ${TP2_HOST}/gpu/spirv_soft_types.c
   ${TP2_HOST}/gpu/spirv_specialize.c
   ${TP2_HOST}/gpu/vk_buffer.c
   ${TP2_HOST}/gpu/vk_check.c

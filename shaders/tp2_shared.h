@@ -84,7 +84,8 @@
 #define TP2_SPEC_SLABS 17    /* int: slabs a dispatch's rows of workgroups are cut into (render_bands.c) */
 #define TP2_SPEC_TWINS 18    /* int: TP2_TWIN_*, which kinds have twins (host/pack/ties.h) */
 #define TP2_SPEC_SCENE_SLOTS 19 /* bool: no BVH, slots in scene order (host/pack/scene_pack.c, order_bounded) */
-#define TP2_SPEC_COUNT 20
+#define TP2_SPEC_SOFT_KEEP 20 /* bool: always false (shaders/soft_double_keep.glsl) */
+#define TP2_SPEC_COUNT 21
 
 /* A pixel's signature word (shaders/signature.glsl, host/render/retrace.c): a
  * hash of the float pass's decisions, three bits and the camera rays'

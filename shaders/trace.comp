@@ -20,6 +20,9 @@
 #include "intersect.glsl"
 #include "pigments.glsl"
 #include "shade.glsl"
+#ifdef TP2_DOUBLE
+#include "soft_double_keep.glsl"
+#endif
 
 layout(local_size_x = TP2_GROUP_X, local_size_y = TP2_GROUP_Y) in;
 
@@ -353,6 +356,10 @@ uvec2 parked_doubt(uvec2 parked[STACK_SIZE], int slot)
 void main()
 {
     frame = frame_buffer;
+#ifdef TP2_DOUBLE
+    if (SOFT_DOUBLE_KEEP)
+        sd_keep();
+#endif
     int width = frame.counts.x;
     int height = frame.counts.y;
     for (int i = 0; i < TP2_STAT_COUNT; ++i)

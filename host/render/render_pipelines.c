@@ -58,6 +58,7 @@ static void spec_values(const struct renderer *r, const struct tracer *t, int wa
     v[TP2_SPEC_SLABS] = (int32_t)r->slabs;
     v[TP2_SPEC_TWINS] = f->twins;
     v[TP2_SPEC_SCENE_SLOTS] = f->scene_slots;
+    v[TP2_SPEC_SOFT_KEEP] = 0;
     for (uint32_t id = 0; id < TP2_SPEC_COUNT; id++)
         map[id] = (VkSpecializationMapEntry){id, id * sizeof(int32_t), sizeof(int32_t)};
 }
