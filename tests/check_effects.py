@@ -1128,13 +1128,32 @@ def expect_auto_is_float(c, env, why):
 def case_auto_without_float64(c):
     """On a device without shaderFloat64 (VK_LAYER_TP2_no_fp64 hides it from
     lavapipe, and refuses a device or a shader module that would use it)
-    auto and mixed are float, and --stats says so; --precision double is
+    auto and mixed retrace in software double (shaders/soft_double.glsl),
+    --stats says so and how many pixels it took, and the image is the very
+    bytes of mixed's where the device has double; --precision double is
     refused, exit 1, nothing written. The validation layer is above the
     device layer (checked from the loader's account, VK_LOADER_DEBUG)."""
     env = layer_env("no_fp64")
-    scene, err = expect_auto_is_float(c, {**env, "VK_LOADER_DEBUG": "layer"},
-                                      "the device has no shaderFloat64")
-    expect_validation_above(c, err, "no_fp64")
+    scene = scene_file(c.tmp, "s.txt", effects_scene())
+    native = os.path.join(c.tmp, "native.pfm")
+    status, _, err = run(c.tp2, ["--stats", "--precision", "mixed", scene, native, "40", "30"])
+    c.require(status == 0, f"mixed with double: exit {status}: {err}")
+    native_again = auto_stats(err)[1]
+    auto_err = ""
+    for name, options, extra in (("auto", [], {"VK_LOADER_DEBUG": "layer"}),
+                                 ("mixed", ["--precision", "mixed"], {})):
+        out = os.path.join(c.tmp, name + ".pfm")
+        status, _, err = run(c.tp2, ["--stats", *options, scene, out, "40", "30"],
+                             {**env, **extra})
+        c.require(status == 0, f"{name}: exit {status}: {err}")
+        auto_err = err if name == "auto" else auto_err
+        precision, again = auto_stats(err)
+        c.expect(precision == f"{name} (float, then pixels on decision boundaries again in "
+                              "software double)" and "again in software double" in err and
+                 again == native_again and again > 0, f"{name} --stats: {err[-1500:]!r}")
+        with open(out, "rb") as a, open(native, "rb") as b:
+            c.expect(a.read() == b.read(), f"{name} without double differs from mixed with it")
+    expect_validation_above(c, auto_err, "no_fp64")
     out = os.path.join(c.tmp, "d.pfm")
     status, _, err = run(c.tp2, ["--precision", "double", scene, out, "40", "30"], env)
     c.expect(status == 1 and "has no shaderFloat64" in err and not os.path.exists(out),

@@ -117,9 +117,10 @@ static void print_stats(const struct render_stats *st, double parse, double writ
     fprintf(stderr, "tp2: render     %8.3f s (%d band%s of %d rows, less readback and "
                     "write)\n", st->render, st->bands, st->bands == 1 ? "" : "s", st->band_rows);
     if (st->retracing)
-        fprintf(stderr, "tp2: retrace    %8.3f s (%llu pixels, %.2f%%, again in double; in "
+        fprintf(stderr, "tp2: retrace    %8.3f s (%llu pixels, %.2f%%, again in %sdouble; in "
                         "render)\n", st->retrace, (unsigned long long)st->retraced,
-                100.0 * (double)st->retraced / ((double)width * height));
+                100.0 * (double)st->retraced / ((double)width * height),
+                st->retrace_soft ? "software " : "");
     fprintf(stderr, "tp2: passes     %8u (walks of at most %d rays each)\n", st->passes,
             st->pass_rays);
     fprintf(stderr, "tp2: readback   %8.3f s (finished bands as the file needs them, "

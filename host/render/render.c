@@ -412,8 +412,9 @@ static int check_scene_fits(const struct vkc *vk, const struct packed_scene *p,
 
 /* The passes this device runs and how: under --precision mixed (and
  * auto but on a CPU device: render_scene, auto_on_device) a float pass
- * that records signatures and a retrace pass in double, where the device
- * has shaderFloat64 and the double scene fits it (twin_fits). */
+ * that records signatures and a retrace pass in double, where the double
+ * scene fits the device (twin_fits); in software double
+ * (shaders/soft_double.glsl) where it has no shaderFloat64. */
 static void plan_passes(struct renderer *r, const struct render_options *opt,
                         const struct scene_features *f, bool twin_fits)
 {
@@ -423,8 +424,9 @@ static void plan_passes(struct renderer *r, const struct render_options *opt,
     r->loop_guard = needs_loop_guard(&r->vk);
     r->slabs = dispatch_slabs(&r->vk);
     r->band = (struct tracer){.use_double = opt->use_double,
-                              .signatures = opt->retrace && twin_fits && r->vk.float64};
-    r->retrace = (struct tracer){.use_double = true, .pixel_list = true};
+                              .signatures = opt->retrace && twin_fits};
+    r->retrace = (struct tracer){.use_double = true, .pixel_list = true,
+                                 .soft = !r->vk.float64};
     r->band.pass_rays = pass_rays(r->loop_guard, &r->band.walking);
     r->retrace.pass_rays = pass_rays(r->loop_guard, &r->retrace.walking);
     r->walk_capacity = r->loop_guard ? TP2_WALK_CAPACITY : 1;
@@ -559,12 +561,14 @@ static void describe_precision(const struct renderer *r, const struct render_opt
     const char *used = r->band.use_double ? "double" : "float";
     if (retracing(r))
         snprintf(st->precision, sizeof st->precision,
-                 "%s (float, then pixels on decision boundaries again in double)", name);
+                 "%s (float, then pixels on decision boundaries again in %sdouble)", name,
+                 r->retrace.soft ? "software " : "");
     else if (why)
         snprintf(st->precision, sizeof st->precision, "%s (%s: %s)", used, name, why);
     else
         snprintf(st->precision, sizeof st->precision, "%s", used);
     st->retracing = retracing(r);
+    st->retrace_soft = retracing(r) && r->retrace.soft;
 }
 
 /* Auto on a CPU device is double throughout, with the default's pruning
@@ -778,8 +782,6 @@ int render_scene(const struct scene *s, const struct render_options *asked,
     bool twin_fits = opt->retrace && check_scene_fits(&r.vk, &twin, true, true) == 0;
     if (cpu_double)
         why = "a CPU device, where double costs no more than mixed";
-    else if (asked->retrace && !r.vk.float64)
-        why = "the device has no shaderFloat64";
     else if (opt->retrace && !twin_fits)
         why = "the double scene does not fit the device";
     t.plan_start = clock_seconds();

@@ -16,9 +16,9 @@ struct render_options {
     double bailout;    /* least weight of a traced ray; 0: the exact model */
     bool use_double;   /* double-precision geometry: the reference image */
     bool retrace;      /* --precision mixed or auto: float, then the pixels on
-                        * decision boundaries again in double (where the
-                        * device has shaderFloat64 and the double scene
-                        * fits it) */
+                        * decision boundaries again in double (in software
+                        * where the device has no shaderFloat64), where the
+                        * double scene fits the device */
     bool double_on_cpu; /* --precision auto: on a CPU device the whole
                          * image in double instead (render.c, auto_on_device) */
     /* Set when use_double was chosen for the scene's range, not asked for:
@@ -55,6 +55,7 @@ struct render_stats {
     int pass_rays;        /* rays per walk per pass at the end */
     uint64_t rays[TP2_STAT_COUNT]; /* TP2_STAT_*; zero unless count_rays */
     bool retracing;       /* mixed's double retrace ran */
+    bool retrace_soft;    /* ... in software double (no shaderFloat64) */
     double device_choice; /* seconds packing waited for the choice of device (auto) */
     uint64_t retraced;    /* pixels traced again in double */
     double retrace;       /* seconds marking and retracing them (in render) */

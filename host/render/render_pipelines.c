@@ -15,6 +15,7 @@
 #include "kinds.h"
 #include "pipeline_cache.h"
 #include "spirv_exact.h"
+#include "spirv_soft_double.h"
 #include "spirv_specialize.h"
 #include "trace_double_basic_spv.h"
 #include "trace_double_curved_spv.h"
@@ -123,9 +124,10 @@ static int create_layouts(struct renderer *r)
     return 0;
 }
 
-/* Pass t's code rewritten by `pass` (spirv_exact), which
- * t then owns. Returns the pass's count of sites, or (size_t)-1 after
- * saying `doing` failed. */
+/* Pass t's code rewritten by `pass` (spirv_exact, spirv_soft_double),
+ * which t then owns. Returns the pass's count of sites, or (size_t)-1
+ * after saying `doing` failed (out of memory: the embedded builds are
+ * what the passes are tested on). */
 static size_t rewrite(struct tracer *t,
                       uint32_t *(*pass)(const uint32_t *, size_t, size_t *, size_t *),
                       const char *doing)
@@ -152,7 +154,11 @@ static int choose_code(struct renderer *r)
         struct tracer *t = passes[k];
         t->code = builds[t->use_double][tier].code;
         t->words = builds[t->use_double][tier].size / sizeof *t->code;
-        if (t->use_double &&
+        if (t->use_double && t->soft &&
+            rewrite(t, spirv_soft_double, "putting software double in the shader") ==
+                (size_t)-1)
+            return -1;
+        if (t->use_double && !t->soft &&
             rewrite(t, spirv_exact, "making the double shader exact") == (size_t)-1)
             return -1;
     }

@@ -23,6 +23,7 @@
  * retrace pass, under auto only, traces the listed pixels in double. */
 struct tracer {
     bool use_double, signatures, pixel_list;
+    bool soft; /* its doubles in software (the device has no shaderFloat64) */
     const uint32_t *code; /* its SPIR-V: a build of CMakeLists.txt's, or rewritten */
     size_t words;
     uint32_t *rewritten; /* owned: the double build made exact, or fused (choose_code) */
