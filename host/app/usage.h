@@ -22,14 +22,15 @@
     "                       then virtual, then CPU)\n"                        \
     "  --list-devices       list the Vulkan devices and exit\n"               \
     "  --dump-scene         print the scene as tp2 read it, as JSON, to\n"    \
-    "                       stdout and exit (no output file, no device)\n"   \
+    "                       stdout and exit (no output file, no device)\n"    \
     "  --precision P        auto (default), mixed, float or double.\n"        \
     "                       double: double-precision geometry, the\n"         \
     "                       reference image; mixed: float, then the\n"        \
     "                       pixels where rounding can flip a decision\n"      \
     "                       (which object, shadow, checker cell) again\n"     \
-    "                       in double; auto: double on a CPU device\n"        \
-    "                       (lavapipe), else mixed\n"                         \
+    "                       in double (in software where the device\n"        \
+    "                       has none); auto: double on a CPU device\n"        \
+    "                       that has it (lavapipe), else mixed\n"             \
     "  --spp N              samples per pixel (overrides the scene's\n"       \
     "                       'samples'; default 1, the pixel center)\n"        \
     "  --stats              print phase times and rays traced to stderr\n"    \
