@@ -154,12 +154,10 @@ static int choose_code(struct renderer *r)
         struct tracer *t = passes[k];
         t->code = builds[t->use_double][tier].code;
         t->words = builds[t->use_double][tier].size / sizeof *t->code;
-        if (t->use_double && t->soft &&
-            rewrite(t, spirv_soft_double, "putting software double in the shader") ==
-                (size_t)-1)
-            return -1;
-        if (t->use_double && !t->soft &&
-            rewrite(t, spirv_exact, "making the double shader exact") == (size_t)-1)
+        if (t->use_double &&
+            rewrite(t, t->soft ? spirv_soft_double : spirv_exact,
+                    t->soft ? "putting software double in the shader"
+                            : "making the double shader exact") == (size_t)-1)
             return -1;
     }
     return 0;
