@@ -17,7 +17,7 @@ struct Hit {
     float edge;  // and where it passed a flat solid's or a triangle's edge
                  // within its doubt (shapes.glsl: edge_graze, exit_graze,
                  // triangle_graze), if nearer than the hit
-    uint key;    // file_key(object) where test_object needs it (by_slot 0)
+    uint key;    // file_key(object) where test_object needs it (BY_KEYS)
 };
 
 // The surface a ray starts on, which rounding must not let it hit again
@@ -109,20 +109,26 @@ uint file_key(int i)
     return uint(object_ids(i).x) >> TP2_SHAPE_ORDER_SHIFT;
 }
 
+// How test_object tells which of two objects at one distance is listed
+// first in the scene file. A constant at each call, as lavapipe runs
+// every arm: what a rule reads, it reads for every object tested.
+const int BY_KEYS = 0;        // i's key, read where its kind is (shape_of),
+                              // against the hit's, kept in h.key; then the
+                              // layout (a mesh's own triangles, and past
+                              // TP2_ORDER_MAX)
+const int IN_FILE_ORDER = 1;  // slots tested in scene order (trace_plain):
+                              // the hit so far was listed first
+const int AFTER_BOUNDED = 2;  // an unbounded slot, tested after the bounded
+                              // ones in scene order (trace_plain): its key
+                              // against a bounded hit's slot
 
 // Tests object i, of kind `kind`, and keeps the nearer hit in h; whether
 // an any-hit ray has found one. An exact tie goes to the object listed
-// first in the scene file, whatever order the BVH or a plain loop tests
-// them in (it differs where mixed's float pass grows boxes). by_slot
-// (trace_plain, without a BVH, where every slot is in scene order): 1 for
-// a bounded object i, whose earlier bounded slots are listed before it;
-// 2 for an unbounded one, whose key is compared with a bounded hit's
-// slot; else 0, and the keys decide, the layout within one object (a
-// mesh's triangles) and beyond TP2_ORDER_MAX: i's key is read where its
-// kind is (shape_of), the hit's is kept in h.key. A constant, as
-// lavapipe reads a record for every object tested, tie or not.
+// first in the scene file (SPEC 4), whatever order the BVH or a plain
+// loop tests them in (it differs where mixed's float pass grows boxes);
+// `order` says how that is told. An any-hit search takes any hit.
 bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bool any_hit,
-                 vec2 doubt, int by_slot)
+                 vec2 doubt, int order)
 {
     int part;
     float edge = NO_EDGE;
@@ -131,14 +137,13 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
     bool grazed = SIGNATURES && edge < NO_EDGE;
     if (grazed && edge <= float(h.t) + most_reach())
         h.edge = min(h.edge, edge);
-    uint key = by_slot == 0 ? file_key(i) : 0u;
+    uint key = order == BY_KEYS ? file_key(i) : 0u;
     bool first_listed; // of i and h.object, if at one distance
-    if (by_slot == 1)
-        first_listed = i < h.object;
-    else if (by_slot == 2)
-        first_listed = h.object < frame.geometry.x
-                           ? int(file_key(i)) < min(2 * h.object + 1, TP2_ORDER_MAX)
-                           : i < h.object;
+    if (order == IN_FILE_ORDER)
+        first_listed = false;
+    else if (order == AFTER_BOUNDED)
+        first_listed = h.object < frame.geometry.x &&
+                       int(file_key(i)) < min(2 * h.object + 1, TP2_ORDER_MAX);
     else
         first_listed = h.object >= 0 && (key < h.key || (key == h.key && i < h.object));
     bool nearer = (t < h.t || (t == h.t && first_listed)) && !(any_hit && grazed);
@@ -158,11 +163,10 @@ bool test_object(inout Hit h, int i, int kind, rvec3 o, rvec3 d, Start start, bo
 // kinds for each object it tests (one loop where both are one kind). A
 // `first` of the first loop's objects is tested first (k = -1); another
 // in its turn only (the hint is a guess: any occluder answers the same).
-// Without a BVH, but not under mixed, the bounded objects' slots are in scene
-// order (SCENE_SLOTS: host/pack/scene_pack.c, order_bounded), and the
-// unbounded ones' too:
-// a loop over the bounded ones alone decides ties by slot, and the
-// unbounded loop by one key read per object (test_object).
+// Without mixed's float pass, every slot is in scene order (SCENE_SLOTS:
+// host/pack/scene_pack.c, order_bounded): a loop over the bounded slots
+// alone tests them in file order, and the unbounded loop compares one key
+// per object with a bounded hit's slot (test_object's orders).
 Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int first, vec2 doubt)
 {
     Hit h = Hit(tmax, -1, 0, tmax, -1, 0, NO_GRAZE, NO_EDGE, 0u);
@@ -174,11 +178,11 @@ Hit trace_plain(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
     int k = OCCLUDER_HINT && HAS_AREA && first >= 0 && first < split ? -1 : 0;
     for (; k < split && !done; ++k)
         done = test_object(h, k < 0 ? first : k, BOUNDED_SHAPE, o, d, start, any_hit, doubt,
-                           SCENE_SLOTS && bounded_only ? 1 : 0);
+                           SCENE_SLOTS && bounded_only ? IN_FILE_ORDER : BY_KEYS);
     if (two_kinds)
         for (int i = split; i < total && !done; ++i)
             done = test_object(h, i, UNBOUNDED_SHAPE, o, d, start, any_hit, doubt,
-                               SCENE_SLOTS ? 2 : 0);
+                               SCENE_SLOTS ? AFTER_BOUNDED : BY_KEYS);
     return h;
 }
 
@@ -234,7 +238,7 @@ Hit trace_scene(rvec3 o, rvec3 d, Start start, real tmax, bool any_hit, int firs
         int link = 0;       // a child to enter after this step, if `enter`
         bool enter = false;
         if (i < end) {
-            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt, 0))
+            if (test_object(h, i, shape_of(i), o, d, start, any_hit, doubt, BY_KEYS))
                 break;
             ++i;
         } else if (USE_BVH && node >= 0) { // without a BVH these arms compile out
