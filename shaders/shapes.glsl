@@ -359,21 +359,22 @@ void surface_box(int i, int part, inout rvec3 p, out rvec3 n, out real scale)
 // slab between the caps. Its radius at height z along the axis is
 // r0 + k z; the side holds |x_perp|^2 <= (r0 + k z)^2 on the nappe where
 // r0 + k z >= 0, which the slab keeps (both radii are >= 0).
-// A cap that lies in another object's face (a twin cap: the record's
-// length is then negative) is met as that face is (host/pack/ties.h):
-// packing made the axis that face's normal (up to its sign) and put the
-// face's place along the axis in c.y, so (c.y - axis.o) / (axis.d), from
-// the ray as it came, is plane_cross's arithmetic on that plane, bit for
-// bit, with no row beyond the record read. The span is found as for any
-// cap, and where it enters or leaves by that cap, the distance is that.
+// The caps: where the scene has a cap lying in another object's face (a
+// twin cap, host/pack/ties.h; TWIN_CAPS), every cap is met as a plane
+// is, from the ray as it came: (c - axis.o) / (axis.d), c the cap's place
+// along the axis, c.y for the base and c.y + h for the top. Packing made
+// a twin the base (turning the solid over where it is the top), its axis
+// that face's normal (up to its sign) and c.y the face's place, so this
+// is plane_cross's arithmetic on that face, bit for bit. c.y shares its
+// texel with a cone's top radius. The span is clipped in the ray's own
+// distances.
 real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int part)
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    bool twin = TWIN_CAPS && axis.w < 0.0;
-    real h = abs(axis.w);
+    real h = axis.w;
     real k = (r1 - base.w) / h;
-    real cap_num = TWIN_CAPS ? object_row(i, 2).y - rdot(axis.xyz, o) : 0.0;
+    real ao = rdot(axis.xyz, o); // before o moves
     real t0 = recenter(base.xyz + (0.5 * h) * axis.xyz, o, d);
     rvec3 oc = o - base.xyz;
     real oa = rdot(oc, axis.xyz);
@@ -382,21 +383,14 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     rvec3 dp = d - da * axis.xyz;
     real rho = base.w + k * oa; // the radius at the origin's height
     real slope = k * da;        // how fast the radius grows along the ray
-    // The twin cap, unless the ray runs along it: the top where c.y lies
-    // nearer it than the base (cap_num + oa - t0 da is c.y - axis.base).
-    int cap_part = twin && da != 0.0 ? (cap_num + oa - t0 * da > 0.5 * h ? 2 : 1) : -1;
-    real t_lo = (cap_part == 1 ? cap_num : 0.0 - oa) / da;
-    real t_hi = (cap_part == 2 ? cap_num : h - oa) / da;
-    real cap_t = cap_part == 1 ? t_lo : t_hi; // from the ray's own origin
-    if (TWIN_CAPS) {
-        t_lo = cap_part == 1 ? t_lo - t0 : t_lo;
-        t_hi = cap_part == 2 ? t_hi - t0 : t_hi;
-    }
+    real c = TWIN_CAPS ? object_row(i, 2).y : 0.0;
+    rvec2 caps = TWIN_CAPS ? (rvec2(c, c + h) - ao) / da : rvec2(0.0 - oa, h - oa) / da + t0;
     Span s = WHOLE_LINE;
-    clip_slab_at(s, oa, da, 0.0, h, t_lo, t_hi, 1, 2);
+    clip_slab_at(s, oa, da, 0.0, h, caps.x, caps.y, 1, 2);
     rvec2 r;
     real qa = rdot(dp, dp) - slope * slope;
     int n = quadratic_roots(qa, 2.0 * (rdot(op, dp) - rho * slope), rdot(op, op) - rho * rho, r);
+    r += t0;
     if (n == 2 && qa > 0.0) {
         clip(s, r.x, r.y, 0, 0, 0.0);
     } else if (n == 2) { // steeper than the side: the half-line on our nappe
@@ -413,12 +407,6 @@ real hit_tapered(int i, real r1, rvec3 o, rvec3 d, bool on, bool inward, out int
     } else if (qa > 0.0 || (qa == 0.0 && rdot(op, op) > rho * rho)) {
         return NO_HIT; // outside the side all along (else inside all along)
     }
-    s.t_in += t0;
-    s.t_out += t0;
-    if (TWIN_CAPS) {
-        s.t_in = s.part_in == cap_part && s.t_in > -NO_HIT ? cap_t : s.t_in;
-        s.t_out = s.part_out == cap_part && s.t_out < NO_HIT ? cap_t : s.t_out;
-    }
     return convex_hit(s, on, inward, part);
 }
 
@@ -433,7 +421,6 @@ void surface_tapered(int i, real r1, int part, inout rvec3 p, out rvec3 n, out r
 {
     rvec4 base = object_row(i, 0);
     rvec4 axis = object_row(i, 1);
-    axis.w = abs(axis.w); // negative: a twin cap (hit_tapered)
     rvec3 y = p - base.xyz;
     real z = rdot(y, axis.xyz);
     scale = max_abs(p) + axis.w + max(base.w, r1);
@@ -721,7 +708,7 @@ real hit_triangle(int i, rvec3 o, rvec3 d, bool on, vec2 doubt, inout float edge
     // In another object's face (host/ties.h): that face's distance, so
     // that the two tie exactly; asked only of a ray inside the corners.
     ivec4 ids = TWIN_TRIANGLES ? object_ids(i) : ivec4(0);
-    if (TWIN_TRIANGLES && (ids.x & TP2_SHAPE_TWIN_BASE) != 0) {
+    if (TWIN_TRIANGLES && (ids.x & TP2_SHAPE_TWIN) != 0) {
         rvec4 twin = extra_row(ids.w);
         real denom = rdot(twin.xyz, d);
         t = denom != 0.0 ? plane_cross(twin, o, denom) : t;

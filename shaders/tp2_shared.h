@@ -188,18 +188,15 @@
  * coincident_faces takes equal distances for coincident faces only
  * without it. */
 #define TP2_SHAPE_NEAR_TWIN 0x20
-/* A cylinder's or cone's base cap (or its top cap: one of them) lies in
- * another object's face, or a triangle does (BASE): it is met by plane_t's
- * arithmetic on that face's plane, so that both give one distance
- * (host/ties.h): a triangle's plane is kept in extra row ids.w; a cap's
- * axis is the plane's normal and its record's c.y the plane's place
- * along it, and a negative length says so. The code for each is
- * compiled only where TP2_SPEC_TWINS has its bit (TP2_TWIN_CAPS,
- * TP2_TWIN_TRIANGLES). */
+/* A triangle lies in another object's face: it is met by plane_t's
+ * arithmetic on that face's plane, kept in extra row ids.w, so that both
+ * give one distance (host/pack/ties.h). A cap that does (a twin cap) is
+ * met so too, from its record (shaders/shapes.glsl, hit_tapered). The
+ * code for each is compiled only where TP2_SPEC_TWINS has its bit
+ * (TP2_TWIN_CAPS, TP2_TWIN_TRIANGLES). */
 #define TP2_TWIN_CAPS 1
 #define TP2_TWIN_TRIANGLES 2
-#define TP2_SHAPE_TWIN_BASE 0x40
-#define TP2_SHAPE_TWIN_TOP 0x80
+#define TP2_SHAPE_TWIN 0x40
 /* Above the flags: the object's place in the scene file (SPEC 4, Ties:
  * of two objects hit at one distance, the one listed first is the hit),
  * up to TP2_ORDER_MAX (later ones share it, and the layout decides

@@ -4,9 +4,9 @@
 Objects stand on a floor at y = -0.7 (a plane, or a one-face polyhedron);
 the camera looks up at them from under the floor, so that each camera ray
 meets the floor and, inside a footprint, an object's base at one distance
-(a box's face, a cylinder's cap either way up, a cone's base, a triangle
-lying in the floor). Every finish is ambient only, so a pixel's color says
-which object its ray hit. The hit is computed here from the camera and
+(a box's face, a cylinder's cap either way up, a cone's base, a frustum's
+top, a triangle lying in the floor). Every finish is ambient only, so a
+pixel's color says which object its ray hit. The hit is computed here from the camera and
 the footprints, away from their edges (margin below): the object listed
 first in the file, the floor when it comes first, else the object. Each
 precision (float, mixed, the default, double) must show exactly that at
@@ -30,6 +30,8 @@ OBJECTS = [
      lambda x, z: 0.45 - math.hypot(x, z - 1.3)),
     ("cone", (0.2, 0.8, 0.8), "cone -1.4 -0.7 1.4 0.55  -1.4 0.9 1.4 0",
      lambda x, z: 0.55 - math.hypot(x + 1.4, z - 1.4)),
+    ("cone top down", (0.5, 0.5, 0.5), "cone -0.1 0.6 -0.4 0.1  -0.1 -0.7 -0.4 0.45",
+     lambda x, z: 0.45 - math.hypot(x + 0.1, z + 0.4)),
     ("triangle", (0.8, 0.2, 0.8), "triangle 1.5 -0.7 1  2.6 -0.7 1  2 -0.7 2.2", None),
 ]
 FLOOR_COLOR = (0.8, 0.2, 0.2)

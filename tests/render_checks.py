@@ -667,6 +667,15 @@ def case_cone_apex(c):
     c.expect(near >= 10, f"only {near} pixels checked within 3 of the apex")
 
 
+def case_standing_on_floor(c):
+    """A frustum and a cylinder whose second end lies in the floor (packing
+    turns them over, radii and all), and a box, standing on a floor plane
+    and casting shadows on it: the model everywhere."""
+    scene = c.load("standing")
+    img = c.render("standing", "pfm", (48, 36))
+    c.expect_most(c.expect_model(scene, img), img, 0.9, "standing solids")
+
+
 def case_torus_hole(c):
     """The ray on the axis passes through the torus's hole to the wall; the
     ring around it is the torus; the model everywhere."""

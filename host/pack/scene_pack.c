@@ -263,40 +263,62 @@ static void move_record(const struct scene *s, const struct layout *lay, size_t 
     shape_kinds[o->kind].move(rec, extra, lay->origin);
 }
 
+/* A cylinder or cone turned over: its top becomes its base. */
+static void turn_over(struct shape_record *rec, int kind)
+{
+    double *base = rec->row[0], *axis = rec->row[1];
+    for (int a = 0; a < 3; a++) {
+        base[a] += axis[3] * axis[a];
+        axis[a] = -axis[a];
+    }
+    if (kind == TP2_SHAPE_CONE) {
+        double r = base[3];
+        base[3] = rec->row[2][0];
+        rec->row[2][0] = r;
+    }
+}
+
 /* Slot's surfaces that ties.h gave another plane, in its packed record
  * (moved), its extra rows and ids; a triangle's twin row goes into all_rows
- * where given (the whole extra buffer). */
+ * where given (the whole extra buffer). Where the scene has twin caps
+ * (TP2_TWIN_CAPS), every cylinder and cone keeps its base's place along
+ * its axis in c.y, where shaders/shapes.glsl, hit_tapered, meets each cap
+ * as a plane. A twin cap is made the base, its axis its face's normal,
+ * turned its way (they differ by the tolerance at most), and its place
+ * the face's, so that the cap is met by plane_cross's arithmetic on that
+ * face. */
 static void apply_ties(const struct layout *lay, size_t slot, struct shape_record *rec,
                        double (*extra)[4], int32_t ids[4], double (*all_rows)[4])
 {
-    if (!lay->tie_first)
-        return;
-    for (size_t e = lay->tie_first[slot]; e < lay->tie_first[slot + 1]; e++) {
+    int kind = ids[0] & TP2_SHAPE_MASK;
+    bool twin_cap = false;
+    size_t first = lay->tie_first ? lay->tie_first[slot] : 0;
+    size_t end = lay->tie_first ? lay->tie_first[slot + 1] : 0;
+    for (size_t e = first; e < end; e++) {
         const struct tie_entry *t = &lay->ties[e];
         if (t->role == TIE_PLANE) {
             memcpy(rec->row[0], t->plane, sizeof t->plane);
         } else if (t->role == TIE_FACE) {
             memcpy(extra[t->part], t->plane, sizeof t->plane);
         } else if (t->role == TIE_CAP) {
-            /* The axis becomes the plane's normal, turned its way (they
-             * differ by the tolerance at most), and c.y the plane's place
-             * along it: shaders/shapes.glsl, hit_tapered, then meets the
-             * cap by plane_cross's arithmetic on this plane. A negative
-             * length says so. */
+            if (t->part == 2)
+                turn_over(rec, kind);
             double *axis = rec->row[1];
             double sign = vec3_dot(axis, t->plane) < 0 ? -1 : 1;
             for (int a = 0; a < 3; a++)
                 axis[a] = sign * t->plane[a];
-            axis[3] = -fabs(axis[3]);
             rec->row[2][1] = -sign * t->plane[3] + 0.0; /* no -0 */
-            ids[0] |= t->part == 2 ? TP2_SHAPE_TWIN_TOP : TP2_SHAPE_TWIN_BASE;
+            twin_cap = true;
         } else {
-            ids[0] |= TP2_SHAPE_TWIN_BASE;
+            ids[0] |= TP2_SHAPE_TWIN;
             ids[3] = (int32_t)t->row;
             if (all_rows)
                 memcpy(all_rows[t->row], t->plane, sizeof t->plane);
         }
     }
+    if ((kind == TP2_SHAPE_CYLINDER || kind == TP2_SHAPE_CONE) && !twin_cap &&
+        (lay->twins_compiled & TP2_TWIN_CAPS))
+        rec->row[2][1] = vec3_dot(rec->row[1], rec->row[0]);
 }
 
 /* The largest coordinate magnitude of the eye, the lights and the
