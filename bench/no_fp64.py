@@ -18,8 +18,12 @@ import os
 import re
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench  # noqa: E402  (environment: lavapipe)
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = ["bench/scenes/spheres.txt", "scenes/assignment.txt", "scenes/demo.txt",
@@ -50,7 +54,7 @@ def main():
     args = ap.parse_args()
     w, h = args.size.split("x")
     layers = os.path.join(os.path.dirname(args.tp2), "tests", "layers", "no_fp64")
-    env = {**os.environ, "VK_ICD_FILENAMES": "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json"}
+    env = bench.tp2_env(True)
     rows = []
     print(f"{'scene':16} {'float s':>8} {'no fp64 s':>9} {'ratio':>6} {'pipeline':>9} "
           f"{'retrace':>8} {'retraced':>8}")

@@ -1,10 +1,10 @@
 // soft_double_keep.glsl: the software double library (soft_double.glsl)
 // kept whole in the double builds. A device without 64-bit floats runs
 // them lowered onto it (host/gpu/spirv_soft_double.h), which calls its
-// functions by name; glslang emits only the functions something calls, so main calls
-// sd_keep, which calls each, under SOFT_DOUBLE_KEEP: a specialization
-// constant the host always sets false, whose dead branch spirv_specialize
-// takes away before a driver sees it.
+// functions by name; glslang emits only the functions something calls,
+// so main calls sd_keep, which calls each, under SOFT_DOUBLE_KEEP: a
+// specialization constant the host always sets false, whose dead branch
+// spirv_specialize takes away before a driver sees it.
 #include "soft_double.glsl"
 
 layout(constant_id = TP2_SPEC_SOFT_KEEP) const bool SOFT_DOUBLE_KEEP = false;
